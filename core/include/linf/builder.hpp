@@ -1,0 +1,38 @@
+// The diagram builder: adaptive subdivision of the clip box, exact local envelopes.
+//
+// A box keeps the sites that can be nearest somewhere in it (lower bound of the distance over
+// the box <= the least upper bound among all sites). When few remain, the box is cut into
+// convex cells where every remaining distance function is affine; there the regions are
+// half-plane intersections and their shared edges are the Voronoi pieces.
+//
+// Ownership rule (the 1-dimensionalisation of two-dimensional L-inf bisectors): a point belongs
+// to the site with the least L-inf distance; ties go to the least L1 distance, then to a point
+// site over a segment site, then to the lower site index. Hence two points on a horizontal line
+// are split by their perpendicular bisector, and an axis-parallel edge and its endpoint by the
+// perpendicular through the endpoint, as in CGAL's convention.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "linf/piece.hpp"
+#include "linf/site.hpp"
+
+namespace linf {
+
+struct BuildOptions {
+  int local_sites = 6;        // solve a box directly once at most this many sites remain,
+  int affine_sites = 48;      // or at most this many of which
+  int bent_sites = 2;         // at most this many are not affine over the box
+  double min_box = 1.0 / 64;  // never cut a box below this side (DBU)
+};
+
+struct BuildStats {
+  std::size_t boxes = 0, solves = 0, solved_sites = 0, cells = 0, raw_pieces = 0;
+};
+
+// Straight pieces with owners and clearances; kinds are left for the classifier.
+// Pieces of one edge are joined where they continue each other in a straight line.
+std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const BuildOptions& opt = {},
+                               BuildStats* stats = nullptr);
+
+}  // namespace linf

@@ -1,0 +1,37 @@
+// The independent checker. It shares no code with the builder: distances come from
+// distance.hpp (minimum over breakpoints), neighbours from a Boost.Geometry R-tree.
+//
+// 1. Every piece, sampled at its ends and inside: both owners at the same distance, the stated
+//    clearances at the ends, and no site of the diagram strictly closer.
+// 2. Random pairs of nearby points whose unique nearest sites differ: some piece crosses
+//    the segment between them (no Voronoi edge is missing).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "linf/piece.hpp"
+
+namespace linf {
+
+struct CheckOptions {
+  int samples_per_piece = 3;   // >= 2: the two ends, plus evenly spaced interior points
+  int crossing_pairs = 2000;   // random pairs for the completeness test
+  double pair_step = 2.0;      // DBU between the two points of a pair
+  std::uint64_t seed = 1;
+  double tolerance = 0;        // DBU; 0 picks 1e-6 + 1e-9 * coordinate scale
+};
+
+struct CheckReport {
+  std::size_t sampled_points = 0, pairs_tested = 0, pairs_separated = 0;
+  std::size_t equidistance_errors = 0, clearance_errors = 0, closer_site_errors = 0, missing_edge_errors = 0;
+  double worst_error = 0;             // DBU, over all distance tests
+  std::vector<std::string> messages;  // the first few failures, with coordinates
+  bool ok() const {
+    return equidistance_errors + clearance_errors + closer_site_errors + missing_edge_errors == 0;
+  }
+};
+
+CheckReport check_diagram(const Diagram& d, const CheckOptions& opt = {});
+
+}  // namespace linf

@@ -1,0 +1,50 @@
+// Sites: the input of the diagram. Integer database units, as in a layout.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+namespace linf {
+
+using Coord = std::int64_t;
+
+struct Point {
+  Coord x = 0, y = 0;
+  friend bool operator==(const Point& a, const Point& b) { return a.x == b.x && a.y == b.y; }
+  friend bool operator!=(const Point& a, const Point& b) { return !(a == b); }
+  friend bool operator<(const Point& a, const Point& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
+};
+
+struct Segment {
+  Point a, b;
+};
+
+// A closed ring; the first point is not repeated at the end.
+using Ring = std::vector<Point>;
+
+struct Polygon {
+  Ring outer;
+  std::vector<Ring> holes;
+};
+
+// A site of the segment Voronoi diagram: a point (a == b) or an open segment.
+// `shape` says which merged polygon (or which plain input) the site belongs to;
+// the ring data lets the classifier tell inside from outside.
+struct Site {
+  Point a, b;
+  std::int32_t shape = -1;  // polygon index after merging, or plain-input index
+  std::int32_t ring = -1;   // ring index in `Sites::rings`, -1 for plain input
+  std::int32_t index = -1;  // vertex index (point) or edge index (segment: edge a->b) in its ring
+  // A segment's endpoint sites, or for a ring vertex its incoming/outgoing edge sites; -1 if none.
+  std::int32_t end0 = -1, end1 = -1;
+  bool is_point() const { return a == b; }
+};
+
+// All sites of one diagram with the rings they came from. Rings are oriented
+// so that the interior of their polygon is on the left of every edge.
+struct Sites {
+  std::vector<Site> sites;
+  std::vector<Ring> rings;
+  std::vector<std::int32_t> ring_shape;
+};
+
+}  // namespace linf

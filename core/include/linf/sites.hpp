@@ -1,0 +1,21 @@
+// From layout data to sites.
+#pragma once
+#include <vector>
+
+#include "linf/site.hpp"
+
+namespace linf {
+
+// Merges overlapping and touching polygons (any angle; Boost.Polygon, integer coordinates),
+// removes repeated and collinear vertices, and orients rings with the interior on the left.
+// Coordinates must lie within +-2^30 so that intersections stay representable.
+std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in);
+
+// Sites of already merged polygons: every vertex a point site, every edge an open segment site.
+Sites sites_of_polygons(const std::vector<Polygon>& merged);
+
+// Sites of plain input: every segment (and its endpoints) and every point. Segments must not
+// cross; they may share endpoints. Each input item is its own shape.
+Sites sites_of_plain(const std::vector<Point>& points, const std::vector<Segment>& segments);
+
+}  // namespace linf

@@ -1,0 +1,62 @@
+#include "cell.hpp"
+
+#include <cmath>
+
+namespace linf::detail {
+
+Cell clip(const Cell& in, const Affine& h, int label) {
+  const std::size_t n = in.v.size();
+  Cell out;
+  if (n < 3) return out;
+  std::vector<double> val(n);
+  bool all_in = true, all_out = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    double v = h.at(in.v[i].x, in.v[i].y);
+    if (std::fabs(v) <= h.err(in.v[i].x, in.v[i].y) * 16) v = 0;
+    val[i] = v;
+    all_in &= v >= 0;
+    all_out &= v <= 0;
+  }
+  if (all_in) return in;
+  if (all_out) return out;
+  out.v.reserve(n + 1);
+  out.label.reserve(n + 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    const double vi = val[i], vj = val[j];
+    if (vi >= 0) {
+      out.v.push_back(in.v[i]);
+      // The edge i->j keeps its label if j is kept too; if it leaves, the new edge starts here.
+      out.label.push_back(vj >= 0 ? in.label[i] : (vi == 0 ? label : in.label[i]));
+    }
+    if ((vi > 0 && vj < 0) || (vi < 0 && vj > 0)) {
+      const double t = vi / (vi - vj);
+      Vec2 p{in.v[i].x + t * (in.v[j].x - in.v[i].x), in.v[i].y + t * (in.v[j].y - in.v[i].y)};
+      out.v.push_back(p);
+      out.label.push_back(vi > 0 ? label : in.label[i]);
+    }
+  }
+  // Drop repeated vertices that rounding can produce.
+  Cell clean;
+  for (std::size_t i = 0; i < out.v.size(); ++i) {
+    const Vec2& p = out.v[i];
+    const Vec2& q = out.v[(i + 1) % out.v.size()];
+    if (p.x == q.x && p.y == q.y) continue;
+    clean.v.push_back(p);
+    clean.label.push_back(out.label[i]);
+  }
+  if (clean.v.size() < 3 || area(clean) <= 0) return Cell{};
+  return clean;
+}
+
+double area(const Cell& c) {
+  double s = 0;
+  for (std::size_t i = 0, n = c.v.size(); i < n; ++i) {
+    const Vec2& p = c.v[i];
+    const Vec2& q = c.v[(i + 1) % n];
+    s += p.x * q.y - q.x * p.y;
+  }
+  return 0.5 * s;
+}
+
+}  // namespace linf::detail

@@ -1,0 +1,195 @@
+#include "linf/checker.hpp"
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "linf/distance.hpp"
+
+namespace linf {
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+
+namespace {
+using BPt = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPt>;
+using Entry = std::pair<BBox, std::int32_t>;
+using Tree = bgi::rtree<Entry, bgi::rstar<16>>;
+
+BBox square(double x, double y, double r) { return BBox(BPt(x - r, y - r), BPt(x + r, y + r)); }
+
+class SiteTree {
+ public:
+  explicit SiteTree(const std::vector<Site>& s) : s_(s) {
+    std::vector<Entry> e;
+    e.reserve(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const Site& t = s[i];
+      e.emplace_back(BBox(BPt(double(std::min(t.a.x, t.b.x)), double(std::min(t.a.y, t.b.y))),
+                          BPt(double(std::max(t.a.x, t.b.x)), double(std::max(t.a.y, t.b.y)))),
+                     std::int32_t(i));
+    }
+    tree_ = Tree(e.begin(), e.end());
+  }
+  // Sites strictly closer than r to (x, y).
+  template <class F>
+  void within(double x, double y, double r, F&& f) const {
+    if (r <= 0) return;
+    for (auto it = tree_.qbegin(bgi::intersects(square(x, y, r))); it != tree_.qend(); ++it) {
+      const double d = dist_site(x, y, s_[it->second]);
+      if (d < r) f(it->second, d);
+    }
+  }
+  void k_nearest(double x, double y, unsigned k, std::vector<std::int32_t>& out) const {
+    out.clear();
+    for (auto it = tree_.qbegin(bgi::nearest(BPt(x, y), k)); it != tree_.qend(); ++it) out.push_back(it->second);
+  }
+  // The nearest and second nearest distances, and the nearest site.
+  void nearest(double x, double y, std::int32_t& best, double& d1, double& d2) const {
+    best = -1, d1 = d2 = INFINITY;
+    // The Euclidean-nearest box gives an upper bound; every closer site's box meets that square.
+    double bound = INFINITY;
+    for (auto it = tree_.qbegin(bgi::nearest(BPt(x, y), 2)); it != tree_.qend(); ++it)
+      bound = std::min(bound, dist_site(x, y, s_[it->second]));
+    for (auto it = tree_.qbegin(bgi::intersects(square(x, y, bound * 1.000001 + 1e-9))); it != tree_.qend(); ++it) {
+      const double d = dist_site(x, y, s_[it->second]);
+      if (d < d1) d2 = d1, d1 = d, best = it->second;
+      else if (d < d2) d2 = d;
+    }
+  }
+
+ private:
+  const std::vector<Site>& s_;
+  Tree tree_;
+};
+
+bool segments_cross(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
+  auto orient = [](const Vec2& o, const Vec2& u, const Vec2& v) {
+    return (u.x - o.x) * (v.y - o.y) - (u.y - o.y) * (v.x - o.x);
+  };
+  const double d1 = orient(p, q, a), d2 = orient(p, q, b), d3 = orient(a, b, p), d4 = orient(a, b, q);
+  return ((d1 <= 0 && d2 >= 0) || (d1 >= 0 && d2 <= 0)) && ((d3 <= 0 && d4 >= 0) || (d3 >= 0 && d4 <= 0));
+}
+
+}  // namespace
+
+CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
+  CheckReport rep;
+  const auto& S = d.sites.sites;
+  if (S.empty()) return rep;
+  double scale = 1, bx1 = INFINITY, by1 = INFINITY, bx2 = -INFINITY, by2 = -INFINITY;
+  for (const Site& t : S) {
+    for (const Point& p : {t.a, t.b}) {
+      scale = std::max({scale, std::fabs(double(p.x)), std::fabs(double(p.y))});
+      bx1 = std::min(bx1, double(p.x)), by1 = std::min(by1, double(p.y));
+      bx2 = std::max(bx2, double(p.x)), by2 = std::max(by2, double(p.y));
+    }
+  }
+  const double tol = opt.tolerance > 0 ? opt.tolerance : 1e-6 + 1e-9 * scale;
+  SiteTree sites(S);
+  auto fail = [&](std::size_t& counter, const std::string& msg) {
+    ++counter;
+    if (rep.messages.size() < 20) rep.messages.push_back(msg);
+  };
+
+  const int k = std::max(2, opt.samples_per_piece);
+  for (const Piece& pc : d.pieces) {
+    for (int i = 0; i < k; ++i) {
+      const double t = double(i) / double(k - 1);
+      const double x = pc.p.x + t * (pc.q.x - pc.p.x), y = pc.p.y + t * (pc.q.y - pc.p.y);
+      const double da = dist_site(x, y, S[pc.a]), db = dist_site(x, y, S[pc.b]);
+      ++rep.sampled_points;
+      rep.worst_error = std::max(rep.worst_error, std::fabs(da - db));
+      std::ostringstream where;
+      where.precision(12);
+      where << "(" << x << "," << y << ") owners " << pc.a << "," << pc.b << " da=" << da << " db=" << db;
+      if (std::fabs(da - db) > tol) fail(rep.equidistance_errors, "not equidistant at " + where.str());
+      if (i == 0 || i == k - 1) {
+        const double stated = i == 0 ? pc.d1 : pc.d2;
+        rep.worst_error = std::max(rep.worst_error, std::fabs(stated - da));
+        if (std::fabs(stated - da) > tol) fail(rep.clearance_errors, "wrong clearance at " + where.str());
+      }
+      const double dmin = std::min(da, db);
+      std::int32_t closer = -1;
+      double dc = 0;
+      sites.within(x, y, dmin - tol, [&](std::int32_t s, double ds) { closer = s, dc = ds; });
+      if (closer >= 0) {
+        rep.worst_error = std::max(rep.worst_error, dmin - dc);
+        std::ostringstream m;
+        m << "site " << closer << " at " << dc << " is closer than the owners at " << where.str();
+        fail(rep.closer_site_errors, m.str());
+      }
+    }
+  }
+
+  // Completeness: a change of unique nearest site between two close points needs a piece between them.
+  std::vector<Entry> pe;
+  pe.reserve(d.pieces.size());
+  for (std::size_t i = 0; i < d.pieces.size(); ++i) {
+    const Piece& p = d.pieces[i];
+    pe.emplace_back(BBox(BPt(std::min(p.p.x, p.q.x), std::min(p.p.y, p.q.y)),
+                         BPt(std::max(p.p.x, p.q.x), std::max(p.p.y, p.q.y))),
+                    std::int32_t(i));
+  }
+  Tree pieces(pe.begin(), pe.end());
+  std::mt19937_64 rng(opt.seed);
+  const double mx = std::max(1.0, 0.1 * std::max(bx2 - bx1, by2 - by1));
+  std::uniform_real_distribution<double> ux(bx1 - mx, bx2 + mx), uy(by1 - mx, by2 + mx), ua(0, 2 * M_PI);
+  std::uniform_real_distribution<double> u01(0, 1);
+  // Half the pairs fall anywhere; half near a random site, within a typical clearance of it,
+  // where most Voronoi edges are.
+  std::vector<double> clear;
+  for (std::size_t i = 0; i < d.pieces.size(); i += 1 + d.pieces.size() / 1000) clear.push_back(d.pieces[i].d1);
+  std::sort(clear.begin(), clear.end());
+  const double reach = 2 * (clear.empty() ? 1.0 : clear[clear.size() / 2]) + opt.pair_step;
+  std::uniform_int_distribution<std::size_t> us(0, S.size() - 1);
+  for (int i = 0; i < opt.crossing_pairs; ++i) {
+    Vec2 p{ux(rng), uy(rng)};
+    if (i % 4 == 1) {
+      const Site& t = S[us(rng)];
+      const double f = u01(rng);
+      p = {double(t.a.x) + f * double(t.b.x - t.a.x) + reach * (2 * u01(rng) - 1),
+           double(t.a.y) + f * double(t.b.y - t.a.y) + reach * (2 * u01(rng) - 1)};
+    } else if (i % 4 == 3) {
+      // Halfway between a site and one of its neighbours: right where their edge should be.
+      const Site& t = S[us(rng)];
+      const double f = u01(rng);
+      const Vec2 pt{double(t.a.x) + f * double(t.b.x - t.a.x), double(t.a.y) + f * double(t.b.y - t.a.y)};
+      std::vector<std::int32_t> near;
+      sites.k_nearest(pt.x, pt.y, 8, near);
+      const Site& u = S[near[std::size_t(u01(rng) * double(near.size())) % near.size()]];
+      const double g = u01(rng);
+      const Vec2 pu{double(u.a.x) + g * double(u.b.x - u.a.x), double(u.a.y) + g * double(u.b.y - u.a.y)};
+      p = {0.5 * (pt.x + pu.x) + opt.pair_step * (2 * u01(rng) - 1), 0.5 * (pt.y + pu.y) + opt.pair_step * (2 * u01(rng) - 1)};
+    }
+    const double ang = ua(rng);
+    const Vec2 q{p.x + opt.pair_step * std::cos(ang), p.y + opt.pair_step * std::sin(ang)};
+    std::int32_t sp, sq;
+    double p1, p2, q1, q2;
+    sites.nearest(p.x, p.y, sp, p1, p2);
+    sites.nearest(q.x, q.y, sq, q1, q2);
+    ++rep.pairs_tested;
+    if (p2 - p1 <= tol || q2 - q1 <= tol || sp == sq) continue;
+    if (p1 <= tol || q1 <= tol) continue;  // on the boundary itself: no edge needed there
+    ++rep.pairs_separated;
+    bool crossed = false;
+    bg::model::segment<BPt> s(BPt(p.x, p.y), BPt(q.x, q.y));
+    for (auto it = pieces.qbegin(bgi::intersects(bg::return_envelope<BBox>(s))); it != pieces.qend() && !crossed; ++it) {
+      const Piece& pc = d.pieces[it->second];
+      crossed = segments_cross(p, q, pc.p, pc.q);
+    }
+    if (!crossed) {
+      std::ostringstream m;
+      m.precision(12);
+      m << "no piece between (" << p.x << "," << p.y << ") nearest " << sp << " and (" << q.x << "," << q.y
+        << ") nearest " << sq;
+      fail(rep.missing_edge_errors, m.str());
+    }
+  }
+  return rep;
+}
+
+}  // namespace linf

@@ -1,0 +1,174 @@
+#include "linf/sites.hpp"
+
+#include <boost/polygon/polygon.hpp>
+#include <map>
+#include <stdexcept>
+
+namespace linf {
+namespace bp = boost::polygon;
+
+namespace {
+
+using BPoint = bp::point_data<int>;
+using BPolygon = bp::polygon_with_holes_data<int>;
+using BSimple = bp::polygon_data<int>;
+
+constexpr Coord kLimit = Coord(1) << 30;
+
+__int128 cross(const Point& o, const Point& a, const Point& b) {
+  return __int128(a.x - o.x) * (b.y - o.y) - __int128(a.y - o.y) * (b.x - o.x);
+}
+
+// Drops repeated points and vertices in the middle of a straight run.
+Ring clean_ring(const Ring& r) {
+  Ring out;
+  for (const Point& p : r)
+    if (out.empty() || out.back() != p) out.push_back(p);
+  while (out.size() > 1 && out.front() == out.back()) out.pop_back();
+  bool changed = true;
+  while (changed && out.size() >= 3) {
+    changed = false;
+    for (std::size_t i = 0; i < out.size() && out.size() >= 3; ++i) {
+      const Point& a = out[(i + out.size() - 1) % out.size()];
+      const Point& c = out[(i + 1) % out.size()];
+      if (cross(a, out[i], c) == 0) {
+        out.erase(out.begin() + long(i));
+        changed = true;
+        --i;
+      }
+    }
+  }
+  return out.size() >= 3 ? out : Ring{};
+}
+
+__int128 twice_area(const Ring& r) {
+  __int128 s = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const Point& p = r[i];
+    const Point& q = r[(i + 1) % r.size()];
+    s += __int128(p.x) * q.y - __int128(q.x) * p.y;
+  }
+  return s;
+}
+
+Ring oriented(Ring r, bool ccw) {
+  if ((twice_area(r) > 0) != ccw) std::reverse(r.begin(), r.end());
+  return r;
+}
+
+BSimple to_boost(const Ring& r) {
+  std::vector<BPoint> pts;
+  pts.reserve(r.size());
+  for (const Point& p : r) {
+    if (p.x <= -kLimit || p.x >= kLimit || p.y <= -kLimit || p.y >= kLimit)
+      throw std::invalid_argument("coordinate outside +-2^30 database units");
+    pts.emplace_back(int(p.x), int(p.y));
+  }
+  BSimple s;
+  s.set(pts.begin(), pts.end());
+  return s;
+}
+
+Ring from_boost(const BSimple& s) {
+  Ring r;
+  for (auto it = s.begin(); it != s.end(); ++it) r.push_back({Coord(bp::x(*it)), Coord(bp::y(*it))});
+  return r;
+}
+
+}  // namespace
+
+std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in) {
+  using namespace boost::polygon::operators;
+  bp::polygon_set_data<int> set;
+  for (const Polygon& p : in) {
+    // Holes are subtracted from their own outer ring before the union with other shapes.
+    bp::polygon_set_data<int> one;
+    one.insert(to_boost(p.outer));
+    for (const Ring& h : p.holes) {
+      bp::polygon_set_data<int> hole;
+      hole.insert(to_boost(h));
+      one -= hole;
+    }
+    set += one;
+  }
+  std::vector<BPolygon> merged;
+  set.get(merged);
+  std::vector<Polygon> out;
+  for (const BPolygon& m : merged) {
+    Polygon p;
+    p.outer = clean_ring(from_boost(BSimple(m.begin(), m.end())));
+    if (p.outer.empty()) continue;
+    p.outer = oriented(p.outer, true);
+    for (auto h = m.begin_holes(); h != m.end_holes(); ++h) {
+      Ring r = clean_ring(from_boost(*h));
+      if (!r.empty()) p.holes.push_back(oriented(r, false));
+    }
+    out.push_back(std::move(p));
+  }
+  // Boost's output order depends on its scanline; sort for reproducible site numbering.
+  std::sort(out.begin(), out.end(), [](const Polygon& a, const Polygon& b) {
+    return std::min_element(a.outer.begin(), a.outer.end())[0] < std::min_element(b.outer.begin(), b.outer.end())[0];
+  });
+  return out;
+}
+
+Sites sites_of_polygons(const std::vector<Polygon>& merged) {
+  Sites s;
+  for (std::size_t pi = 0; pi < merged.size(); ++pi) {
+    std::vector<const Ring*> rings{&merged[pi].outer};
+    for (const Ring& h : merged[pi].holes) rings.push_back(&h);
+    for (const Ring* r : rings) {
+      const std::int32_t ri = std::int32_t(s.rings.size());
+      s.rings.push_back(*r);
+      s.ring_shape.push_back(std::int32_t(pi));
+      const std::int32_t n = std::int32_t(r->size());
+      const std::int32_t base = std::int32_t(s.sites.size());
+      // Layout: vertex i at base + 2i, edge i (vertex i -> i+1) at base + 2i + 1.
+      for (std::int32_t i = 0; i < n; ++i) {
+        Site v;
+        v.a = v.b = (*r)[i];
+        v.shape = std::int32_t(pi), v.ring = ri, v.index = i;
+        v.end0 = base + 2 * ((i + n - 1) % n) + 1;
+        v.end1 = base + 2 * i + 1;
+        s.sites.push_back(v);
+        Site e;
+        e.a = (*r)[i], e.b = (*r)[(i + 1) % n];
+        e.shape = std::int32_t(pi), e.ring = ri, e.index = i;
+        e.end0 = base + 2 * i;
+        e.end1 = base + 2 * ((i + 1) % n);
+        s.sites.push_back(e);
+      }
+    }
+  }
+  return s;
+}
+
+Sites sites_of_plain(const std::vector<Point>& points, const std::vector<Segment>& segments) {
+  Sites s;
+  std::map<Point, std::int32_t> at;
+  auto point_site = [&](const Point& p, std::int32_t shape) {
+    auto it = at.find(p);
+    if (it != at.end()) return it->second;
+    Site v;
+    v.a = v.b = p;
+    v.shape = shape;
+    s.sites.push_back(v);
+    return at[p] = std::int32_t(s.sites.size() - 1);
+  };
+  std::int32_t shape = 0;
+  for (const Segment& g : segments) {
+    if (g.a == g.b) {
+      point_site(g.a, shape++);
+      continue;
+    }
+    Site e;
+    e.a = g.a, e.b = g.b, e.shape = shape++;
+    e.end0 = point_site(g.a, e.shape);
+    e.end1 = point_site(g.b, e.shape);
+    s.sites.push_back(e);
+  }
+  for (const Point& p : points) point_site(p, shape++);
+  return s;
+}
+
+}  // namespace linf

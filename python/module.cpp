@@ -1,0 +1,103 @@
+// Thin binding: plain Python data in, plain Python data out. No logic lives here.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "linf/diagram.hpp"
+
+namespace py = pybind11;
+using namespace linf;
+
+namespace {
+using XY = std::pair<Coord, Coord>;
+
+Ring ring_of(const std::vector<XY>& pts) {
+  Ring r;
+  r.reserve(pts.size());
+  for (auto& p : pts) r.push_back({p.first, p.second});
+  return r;
+}
+
+py::dict to_python(const Result& r) {
+  const Diagram& d = r.diagram;
+  const auto& S = d.sites.sites;
+  py::list pieces;
+  for (const Piece& p : d.pieces) {
+    const Site& a = S[p.a];
+    const Site& b = S[p.b];
+    pieces.append(py::make_tuple(kind_name(p.kind), p.p.x, p.p.y, p.q.x, p.q.y, p.d1, p.d2, a.a.x, a.a.y, a.b.x,
+                                 a.b.y, b.a.x, b.a.y, b.b.x, b.b.y, p.a, p.b));
+  }
+  py::dict check;
+  check["ok"] = r.check.ok();
+  check["sampled_points"] = r.check.sampled_points;
+  check["pairs_tested"] = r.check.pairs_tested;
+  check["pairs_separated"] = r.check.pairs_separated;
+  check["worst_error"] = r.check.worst_error;
+  check["messages"] = r.check.messages;
+  py::dict out;
+  out["pieces"] = pieces;
+  out["check"] = check;
+  out["sites"] = S.size();
+  out["clip"] = py::make_tuple(d.clip.x1, d.clip.y1, d.clip.x2, d.clip.y2);
+  py::dict t;
+  t["merge"] = d.seconds_merge;
+  t["build"] = d.seconds_build;
+  t["check"] = d.seconds_check;
+  out["seconds"] = t;
+  return out;
+}
+
+DiagramOptions options(bool check, int pairs) {
+  DiagramOptions o;
+  o.check = check;
+  o.checker.crossing_pairs = pairs;
+  return o;
+}
+
+// DiagramError becomes ValueError with the checker's first message; nothing is returned.
+template <class F>
+py::dict guarded(F&& f) {
+  Result r;
+  {
+    py::gil_scoped_release unlocked;
+    r = f();
+  }
+  return to_python(r);
+}
+}  // namespace
+
+PYBIND11_MODULE(linf_opc_core, m) {
+  m.doc() = "L-infinity segment Voronoi diagram (core of the L-inf OPC KLayout plugin)";
+  py::register_exception<DiagramError>(m, "DiagramError", PyExc_RuntimeError);
+
+  m.def(
+      "voronoi_polygons",
+      [](const std::vector<std::pair<std::vector<XY>, std::vector<std::vector<XY>>>>& polys, bool check, int pairs) {
+        std::vector<Polygon> in;
+        in.reserve(polys.size());
+        for (auto& p : polys) {
+          Polygon q;
+          q.outer = ring_of(p.first);
+          for (auto& h : p.second) q.holes.push_back(ring_of(h));
+          in.push_back(std::move(q));
+        }
+        return guarded([&] { return voronoi_of_polygons(in, options(check, pairs)); });
+      },
+      py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000,
+      "Diagram of polygons [(outer, [holes])], rings as [(x, y)] in integer DBU. Shapes are merged first.\n"
+      "Returns {'pieces': [(kind, x1, y1, x2, y2, d1, d2, a_x1, a_y1, a_x2, a_y2, b_x1, b_y1, b_x2, b_y2,\n"
+      "site_a, site_b)], 'check': {...}, 'sites': n, 'clip': box, 'seconds': {...}}.\n"
+      "Raises DiagramError if the independent checker rejects the diagram.");
+
+  m.def(
+      "voronoi_sites",
+      [](const std::vector<XY>& points, const std::vector<std::pair<XY, XY>>& segments, bool check, int pairs) {
+        std::vector<Point> p;
+        for (auto& q : points) p.push_back({q.first, q.second});
+        std::vector<Segment> s;
+        for (auto& g : segments) s.push_back({{g.first.first, g.first.second}, {g.second.first, g.second.second}});
+        return guarded([&] { return voronoi_of_sites(p, s, options(check, pairs)); });
+      },
+      py::arg("points"), py::arg("segments"), py::arg("check") = true, py::arg("check_pairs") = 2000,
+      "Diagram of plain sites: points [(x, y)] and non-crossing segments [((x1, y1), (x2, y2))]. Same output.");
+}

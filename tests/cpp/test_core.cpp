@@ -1,0 +1,116 @@
+#include <gtest/gtest.h>
+
+#include "linf/classify.hpp"
+#include "linf/diagram.hpp"
+#include "linf/distance.hpp"
+#include "linf/sites.hpp"
+#include "layouts.hpp"
+
+using namespace linf;
+using linf::testing::box;
+
+TEST(Distance, PointAndSegment) {
+  EXPECT_DOUBLE_EQ(dist_point(3, 4, 0, 0), 4);
+  // Horizontal segment: vertical gap, or the corner beyond its end.
+  EXPECT_DOUBLE_EQ(dist_segment(5, 3, {0, 0}, {10, 0}), 3);
+  EXPECT_DOUBLE_EQ(dist_segment(14, 1, {0, 0}, {10, 0}), 4);
+  // 45-degree segment: the L-inf distance from (0,10) to y=x is 5.
+  EXPECT_DOUBLE_EQ(dist_segment(0, 10, {-100, -100}, {100, 100}), 5);
+}
+
+TEST(Merge, OverlapAndTouchBecomeOne) {
+  auto m = merge_polygons({box(0, 0, 10, 10), box(5, 5, 20, 20), box(20, 0, 30, 10)});
+  ASSERT_EQ(m.size(), 1u);
+  EXPECT_EQ(m[0].outer.size(), 12u);  // collinear vertices removed
+}
+
+TEST(Merge, HoleKeptAndOriented) {
+  Polygon p = box(0, 0, 100, 100);
+  p.holes.push_back({{10, 10}, {10, 90}, {90, 90}, {90, 10}});
+  auto m = merge_polygons({p});
+  ASSERT_EQ(m.size(), 1u);
+  ASSERT_EQ(m[0].holes.size(), 1u);
+  Sites s = sites_of_polygons(m);
+  // Interior is left of every edge: the point (5, 50) is inside, (50, 50) in the hole is not.
+  for (const Site& t : s.sites) {
+    if (t.is_point()) continue;
+    const double cx = 0.5 * double(t.a.x + t.b.x), cy = 0.5 * double(t.a.y + t.b.y);
+    const double dx = double(t.b.x - t.a.x), dy = double(t.b.y - t.a.y);
+    const Vec2 left{cx - dy * 0.01, cy + dx * 0.01};
+    const bool in_ring = left.x > 0 && left.x < 100 && left.y > 0 && left.y < 100 &&
+                         !(left.x > 10 && left.x < 90 && left.y > 10 && left.y < 90);
+    EXPECT_TRUE(in_ring) << t.a.x << "," << t.a.y << " -> " << t.b.x << "," << t.b.y;
+  }
+}
+
+TEST(Diagram, KindsOfTwoWires) {
+  // Two 20-wide wires 30 apart: internal medial axes, one external stretch at clearance 15.
+  Result r = voronoi_of_polygons({box(0, 0, 200, 20), box(0, 50, 200, 70)});
+  ASSERT_TRUE(r.check.ok());
+  int internal = 0, external = 0, adjacent = 0;
+  bool mid_space = false, mid_wire = false;
+  for (const Piece& p : r.diagram.pieces) {
+    if (p.kind == PieceKind::Internal) ++internal;
+    if (p.kind == PieceKind::External) ++external;
+    if (p.kind == PieceKind::Adjacent) ++adjacent;
+    if (p.kind == PieceKind::External && p.p.y == 35 && p.q.y == 35 && std::fabs(p.d1 - 15) < 1e-9) mid_space = true;
+    if (p.kind == PieceKind::Internal && p.p.y == 10 && p.q.y == 10 && std::fabs(p.d1 - 10) < 1e-9) mid_wire = true;
+  }
+  EXPECT_GT(internal, 0);
+  EXPECT_GT(external, 0);
+  EXPECT_GT(adjacent, 0);
+  EXPECT_TRUE(mid_space);
+  EXPECT_TRUE(mid_wire);
+}
+
+TEST(Diagram, NotchInsideAU) {
+  // A U shape: the space between its arms is a notch, not external.
+  Result r = voronoi_of_polygons({{{{0, 0}, {100, 0}, {100, 100}, {80, 100}, {80, 20}, {20, 20}, {20, 100}, {0, 100}}, {}}});
+  ASSERT_TRUE(r.check.ok());
+  bool notch = false;
+  for (const Piece& p : r.diagram.pieces) {
+    EXPECT_NE(p.kind, PieceKind::External);
+    if (p.kind == PieceKind::Notch && std::fabs(0.5 * (p.p.x + p.q.x) - 50) < 1e-9 && p.p.y > 20) notch = true;
+  }
+  EXPECT_TRUE(notch);
+}
+
+TEST(Diagram, TieRuleTwoPointsOnALine) {
+  // Two points with the same y: the two-dimensional L-inf bisector is cut at x = 5.
+  Result r = voronoi_of_sites({{0, 0}, {10, 0}}, {});
+  ASSERT_TRUE(r.check.ok());
+  ASSERT_EQ(r.diagram.pieces.size(), 1u);
+  EXPECT_DOUBLE_EQ(r.diagram.pieces[0].p.x, 5);
+  EXPECT_DOUBLE_EQ(r.diagram.pieces[0].q.x, 5);
+}
+
+TEST(Diagram, TieRuleSegmentAndEndpoint) {
+  // Horizontal segment and its endpoints: the adjacent pieces are the perpendiculars x=0, x=10.
+  Result r = voronoi_of_sites({}, {{{0, 0}, {10, 0}}});
+  ASSERT_TRUE(r.check.ok());
+  int adjacent = 0;
+  for (const Piece& p : r.diagram.pieces) {
+    EXPECT_EQ(p.kind, PieceKind::Adjacent);
+    EXPECT_EQ(p.p.x, p.q.x);
+    EXPECT_TRUE(p.p.x == 0 || p.p.x == 10);
+    ++adjacent;
+  }
+  EXPECT_EQ(adjacent, 2);
+}
+
+TEST(Diagram, RaysClippedToEnlargedBox) {
+  Result r = voronoi_of_polygons({box(0, 0, 100, 10), box(0, 40, 100, 50)});
+  const Box& c = r.diagram.clip;
+  EXPECT_DOUBLE_EQ(c.x1, -100);
+  EXPECT_DOUBLE_EQ(c.x2, 200);
+  EXPECT_DOUBLE_EQ(c.y1, -100);
+  EXPECT_DOUBLE_EQ(c.y2, 150);
+  bool reaches = false;
+  for (const Piece& p : r.diagram.pieces) {
+    for (const Vec2& v : {p.p, p.q}) {
+      EXPECT_GE(v.x, c.x1); EXPECT_LE(v.x, c.x2); EXPECT_GE(v.y, c.y1); EXPECT_LE(v.y, c.y2);
+      reaches |= v.x == c.x1 || v.x == c.x2;
+    }
+  }
+  EXPECT_TRUE(reaches);
+}
