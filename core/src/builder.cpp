@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 
 #include "affine.hpp"
 #include "cell.hpp"
@@ -18,9 +19,11 @@ Affine minus(const Affine& p, const Affine& q) { return {p.a - q.a, p.b - q.b, p
 
 // L-inf distance between a closed box and a site: zero if they meet, else attained at a vertex
 // of one of them (both are convex polygons and the unit ball is a polygon).
-double box_distance(const Box& b, const Site& s) {
+// The same holds for L1, whose breakpoints along a segment are only the axis crossings.
+double box_distance(const Box& b, const Site& s, bool l1 = false) {
   auto point_to_box = [&](double x, double y) {
-    return std::max({b.x1 - x, x - b.x2, b.y1 - y, y - b.y2, 0.0});
+    const double ex = std::max({b.x1 - x, x - b.x2, 0.0}), ey = std::max({b.y1 - y, y - b.y2, 0.0});
+    return l1 ? ex + ey : std::max(ex, ey);
   };
   const double ax = double(s.a.x), ay = double(s.a.y), bx = double(s.b.x), by = double(s.b.y);
   double d = std::min(point_to_box(ax, ay), point_to_box(bx, by));
@@ -40,11 +43,13 @@ double box_distance(const Box& b, const Site& s) {
     const double ux = x - ax, uy = y - ay;
     auto f = [&](double t) {
       t = std::clamp(t, 0.0, 1.0);
-      return std::max(std::fabs(ux - t * dx), std::fabs(uy - t * dy));
+      const double ex = std::fabs(ux - t * dx), ey = std::fabs(uy - t * dy);
+      return l1 ? ex + ey : std::max(ex, ey);
     };
     double m = std::min(f(0), f(1));
     if (dx != 0) m = std::min(m, f(ux / dx));
     if (dy != 0) m = std::min(m, f(uy / dy));
+    if (l1) return m;
     if (dx != dy) m = std::min(m, f((ux - uy) / (dx - dy)));
     if (dx != -dy) m = std::min(m, f((ux + uy) / (dx + dy)));
     return m;
@@ -94,6 +99,7 @@ class Builder {
     keep.reserve(cand.size());
     for (int t : cand)
       if (box_distance(b, S_[t]) <= U + tau_) keep.push_back(t);
+    if (keep.size() > 2) prune_ties(b, keep);
     if (keep.size() <= 1) return;
     const double w = std::max(b.x2 - b.x1, b.y2 - b.y1);
     // Far from the sites whole groups tie in L-inf (a two-dimensional bisector region) and the
@@ -108,6 +114,50 @@ class Builder {
     process({mx, b.y1, b.x2, my}, keep);
     process({b.x1, my, mx, b.y2}, keep);
     process({mx, my, b.x2, b.y2}, keep);
+  }
+
+  // Far from the sites, whole groups share one affine L-inf function over the box (a
+  // two-dimensional bisector region) and the count never drops by subdividing. Inside such a
+  // group only the L1 tie-break decides, so members that lose on it everywhere in the box
+  // are dropped.
+  void prune_ties(const Box& b, std::vector<int>& C) const {
+    struct Entry { double a, b, c; int t; };
+    std::vector<Entry> flat;
+    std::vector<int> rest;
+    for (int t : C) {
+      const int j = affine_piece(f_[t], b);
+      if (j < 0) { rest.push_back(t); continue; }
+      const Affine& p = f_[t].piece[j];
+      flat.push_back({p.a, p.b, p.c, t});
+    }
+    if (flat.size() < 2) return;
+    std::sort(flat.begin(), flat.end(), [](const Entry& x, const Entry& y) {
+      return std::tie(x.a, x.b, x.c, x.t) < std::tie(y.a, y.b, y.c, y.t);
+    });
+    for (std::size_t g0 = 0; g0 < flat.size();) {
+      std::size_t g1 = g0 + 1;
+      while (g1 < flat.size() && flat[g1].a == flat[g0].a && flat[g1].b == flat[g0].b && flat[g1].c == flat[g0].c) ++g1;
+      if (g1 - g0 == 1) { rest.push_back(flat[g0].t); g0 = g1; continue; }
+      double U = INFINITY;
+      for (std::size_t i = g0; i < g1; ++i) {
+        const DistFn& g = g_[flat[i].t];
+        U = std::min(U, std::max({g.at(b.x1, b.y1), g.at(b.x2, b.y1), g.at(b.x2, b.y2), g.at(b.x1, b.y2)}));
+      }
+      // Members with identical L1 pieces are all kept: they may part just outside the box,
+      // and the owner beyond a box side must be among the candidates.
+      for (std::size_t i = g0; i < g1; ++i)
+        if (box_distance(b, S_[flat[i].t], true) <= U + tau_) rest.push_back(flat[i].t);
+      g0 = g1;
+    }
+    std::sort(rest.begin(), rest.end());
+    C.swap(rest);
+  }
+
+  // The piece of f that is the maximum at every corner of the box, or -1.
+  static int affine_piece(const DistFn& f, const Box& b) {
+    const int j = f.argmax(b.x1, b.y1);
+    if (f.argmax(b.x2, b.y1) != j || f.argmax(b.x2, b.y2) != j || f.argmax(b.x1, b.y2) != j) return -1;
+    return j;
   }
 
   // How many sites' distance functions are not affine over the box (argmax differs at corners).
@@ -213,33 +263,98 @@ class Builder {
     }
   }
 
+  // Restriction of an affine piece to the edge p + s (q - p): value at s = 0 and slope.
+  struct Line { double v, d; };
+  static Line along(const Affine& a, const Vec2& p, const Vec2& q) {
+    const double v = a.at(p.x, p.y);
+    return {v, a.at(q.x, q.y) - v};
+  }
+  // A distance function restricted to an edge: a convex piecewise-linear function of s.
+  struct Profile {
+    Line L[6];
+    int n = 0;
+    double at(double s) const {
+      double m = -INFINITY;
+      for (int i = 0; i < n; ++i) m = std::max(m, L[i].v + s * L[i].d);
+      return m;
+    }
+    bool active(int i, double s) const {
+      const double v = L[i].v + s * L[i].d;
+      return v >= at(s) - 1e-12 * (1 + std::fabs(v));
+    }
+  };
+  static Profile profile(const DistFn& f, const Vec2& p, const Vec2& q) {
+    Profile pr;
+    pr.n = f.n;
+    for (int i = 0; i < f.n; ++i) pr.L[i] = along(f.piece[i], p, q);
+    return pr;
+  }
+  // Interior parameters where the two profiles' active pieces cross (one profile: its breaks).
+  static void crossings(const Profile& A, const Profile& B, bool same, std::vector<double>& out) {
+    for (int i = 0; i < A.n; ++i)
+      for (int j = same ? i + 1 : 0; j < B.n; ++j) {
+        const double dd = A.L[i].d - B.L[j].d;
+        if (dd == 0) continue;
+        const double s = (B.L[j].v - A.L[i].v) / dd;
+        if (s > 1e-9 && s < 1 - 1e-9 && A.active(i, s) && B.active(j, s)) out.push_back(s);
+      }
+  }
+
   void emit(const Cell& r, int t, const std::vector<int>& C) {
     const std::size_t n = r.v.size();
     for (std::size_t e = 0; e < n; ++e) {
       const Vec2 p = r.v[e], q = r.v[(e + 1) % n];
       if (std::hypot(q.x - p.x, q.y - p.y) <= 1e-9) continue;
-      int u = r.label[e];
-      if (u == Cell::kBoundary) {
-        // The edge lies on a box side or a piece split: the neighbour is found from this side.
-        const Vec2 nrm{q.y - p.y, p.x - q.x};
-        const Vec2 m{0.5 * (p.x + q.x), 0.5 * (p.y + q.y)};
-        if ((nrm.x < 0 && m.x <= clip_.x1) || (nrm.x > 0 && m.x >= clip_.x2) || (nrm.y < 0 && m.y <= clip_.y1) ||
-            (nrm.y > 0 && m.y >= clip_.y2))
-          continue;
-        u = owner_beyond(m, nrm, C);
-        if (u == t) continue;
-        if (std::fabs(f_[t].at(p.x, p.y) - f_[u].at(p.x, p.y)) > tol(p) ||
-            std::fabs(f_[t].at(q.x, q.y) - f_[u].at(q.x, q.y)) > tol(q))
-          continue;
+      const Vec2 nrm{q.y - p.y, p.x - q.x};
+      const Vec2 m{0.5 * (p.x + q.x), 0.5 * (p.y + q.y)};
+      if ((nrm.x < 0 && m.x <= clip_.x1) || (nrm.x > 0 && m.x >= clip_.x2) || (nrm.y < 0 && m.y <= clip_.y1) ||
+          (nrm.y > 0 && m.y >= clip_.y2))
+        continue;
+      // The neighbour is found from this side, never from the edge's label: where several
+      // sites tie in L-inf their bisector lines coincide, and the owner beyond can change
+      // along the edge where the tie-break changes. Those places are among the crossings of
+      // the affine pieces of the sites that reach t's distance somewhere on the edge.
+      const Line ft = along(f_[t].piece[f_[t].argmax(m.x, m.y)], p, q);
+      // Distances are 1-Lipschitz in L-inf: a site clearly farther at the midpoint never ties.
+      const double reach = std::max(std::fabs(q.x - p.x), std::fabs(q.y - p.y)) + tol(p) + tol(q);
+      const double fm = ft.v + 0.5 * ft.d;
+      std::vector<Profile> g{profile(g_[t], p, q)};
+      std::vector<double> cuts{0.0, 1.0};
+      for (int u : C) {
+        if (u == t || f_[u].at(m.x, m.y) - fm > reach) continue;
+        const Profile fu = profile(f_[u], p, q);
+        std::vector<double> breaks;
+        crossings(fu, fu, true, breaks);
+        double gap = std::min(fu.at(0) - ft.v, fu.at(1) - ft.v - ft.d);
+        for (double s : breaks) gap = std::min(gap, fu.at(s) - (ft.v + s * ft.d));
+        if (gap > tol(p) + tol(q)) continue;
+        cuts.insert(cuts.end(), breaks.begin(), breaks.end());
+        g.push_back(profile(g_[u], p, q));
       }
-      if (t > u) continue;  // the other side reports it
-      Piece pc;
-      pc.p = p, pc.q = q;
-      pc.a = t, pc.b = u;
-      pc.d1 = f_[t].at(p.x, p.y);
-      pc.d2 = f_[t].at(q.x, q.y);
-      out_.push_back(pc);
+      if (g.size() == 1) continue;  // a split inside t's own region
+      for (std::size_t i = 0; i < g.size(); ++i)
+        for (std::size_t j = i; j < g.size(); ++j) crossings(g[i], g[j], i == j, cuts);
+      std::sort(cuts.begin(), cuts.end());
+      for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+        if (cuts[i + 1] - cuts[i] <= 1e-9) continue;
+        const Vec2 a{p.x + cuts[i] * (q.x - p.x), p.y + cuts[i] * (q.y - p.y)};
+        const Vec2 b{p.x + cuts[i + 1] * (q.x - p.x), p.y + cuts[i + 1] * (q.y - p.y)};
+        emit_piece(a, b, t, owner_beyond({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, nrm, C));
+      }
     }
+  }
+
+  void emit_piece(const Vec2& p, const Vec2& q, int t, int u) {
+    if (u == t || t > u) return;  // no edge, or the other side reports it
+    if (std::fabs(f_[t].at(p.x, p.y) - f_[u].at(p.x, p.y)) > tol(p) ||
+        std::fabs(f_[t].at(q.x, q.y) - f_[u].at(q.x, q.y)) > tol(q))
+      return;
+    Piece pc;
+    pc.p = p, pc.q = q;
+    pc.a = t, pc.b = u;
+    pc.d1 = f_[t].at(p.x, p.y);
+    pc.d2 = f_[t].at(q.x, q.y);
+    out_.push_back(pc);
   }
 
   double tol(const Vec2& p) const { return tau_ + 1e-13 * (std::fabs(p.x) + std::fabs(p.y)); }

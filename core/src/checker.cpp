@@ -47,21 +47,42 @@ class SiteTree {
     out.clear();
     for (auto it = tree_.qbegin(bgi::nearest(BPt(x, y), k)); it != tree_.qend(); ++it) out.push_back(it->second);
   }
-  // The nearest and second nearest distances, and the nearest site.
-  void nearest(double x, double y, std::int32_t& best, double& d1, double& d2) const {
-    best = -1, d1 = d2 = INFINITY;
-    // The Euclidean-nearest box gives an upper bound; every closer site's box meets that square.
+  // The owner of (x, y) under the ownership rule (least L-inf, then least L1, then point
+  // before segment, then lower index) and its distance. `clear` is false when some other
+  // site is within `tol` without tying exactly: too close to a boundary to judge.
+  struct Owner { std::int32_t site = -1; double dist = INFINITY; bool clear = true; };
+  Owner owner(double x, double y, double tol) const {
     double bound = INFINITY;
     for (auto it = tree_.qbegin(bgi::nearest(BPt(x, y), 2)); it != tree_.qend(); ++it)
       bound = std::min(bound, dist_site(x, y, s_[it->second]));
-    for (auto it = tree_.qbegin(bgi::intersects(square(x, y, bound * 1.000001 + 1e-9))); it != tree_.qend(); ++it) {
-      const double d = dist_site(x, y, s_[it->second]);
-      if (d < d1) d2 = d1, d1 = d, best = it->second;
-      else if (d < d2) d2 = d;
+    std::vector<std::pair<double, std::int32_t>> c;
+    for (auto it = tree_.qbegin(bgi::intersects(square(x, y, bound + tol + 1e-9))); it != tree_.qend(); ++it)
+      c.emplace_back(dist_site(x, y, s_[it->second]), it->second);
+    Owner o;
+    for (const auto& e : c) o.dist = std::min(o.dist, e.first);
+    const double exact = 1e-12 * (1 + std::fabs(x) + std::fabs(y) + o.dist);
+    double lmin = INFINITY;
+    std::vector<std::pair<double, std::int32_t>> tied;
+    for (const auto& e : c) {
+      if (e.first <= o.dist + exact) tied.emplace_back(dist_site_l1(x, y, s_[e.second]), e.second);
+      else if (e.first <= o.dist + tol) o.clear = false;
     }
+    for (const auto& e : tied) lmin = std::min(lmin, e.first);
+    for (const auto& e : tied) {
+      if (e.first <= lmin + exact) {
+        if (o.site < 0 || before(e.second, o.site)) o.site = e.second;
+      } else if (e.first <= lmin + tol) {
+        o.clear = false;
+      }
+    }
+    return o;
   }
 
  private:
+  bool before(std::int32_t a, std::int32_t b) const {
+    const bool pa = s_[a].is_point(), pb = s_[b].is_point();
+    return pa != pb ? pa : a < b;
+  }
   const std::vector<Site>& s_;
   Tree tree_;
 };
@@ -125,7 +146,7 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
     }
   }
 
-  // Completeness: a change of unique nearest site between two close points needs a piece between them.
+  // Completeness: a change of owner (by the ownership rule) between two close points needs a piece between them.
   std::vector<Entry> pe;
   pe.reserve(d.pieces.size());
   for (std::size_t i = 0; i < d.pieces.size(); ++i) {
@@ -167,13 +188,13 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
     }
     const double ang = ua(rng);
     const Vec2 q{p.x + opt.pair_step * std::cos(ang), p.y + opt.pair_step * std::sin(ang)};
-    std::int32_t sp, sq;
-    double p1, p2, q1, q2;
-    sites.nearest(p.x, p.y, sp, p1, p2);
-    sites.nearest(q.x, q.y, sq, q1, q2);
+    auto inside = [&](const Vec2& v) { return v.x > d.clip.x1 && v.x < d.clip.x2 && v.y > d.clip.y1 && v.y < d.clip.y2; };
+    if (!inside(p) || !inside(q)) continue;  // the diagram ends at the clip box
+    const auto op = sites.owner(p.x, p.y, tol), oq = sites.owner(q.x, q.y, tol);
+    const std::int32_t sp = op.site, sq = oq.site;
     ++rep.pairs_tested;
-    if (p2 - p1 <= tol || q2 - q1 <= tol || sp == sq) continue;
-    if (p1 <= tol || q1 <= tol) continue;  // on the boundary itself: no edge needed there
+    if (!op.clear || !oq.clear || sp == sq) continue;
+    if (op.dist <= tol || oq.dist <= tol) continue;  // on the boundary itself: no edge needed there
     ++rep.pairs_separated;
     bool crossed = false;
     bg::model::segment<BPt> s(BPt(p.x, p.y), BPt(q.x, q.y));

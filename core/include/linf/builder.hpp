@@ -20,9 +20,9 @@
 namespace linf {
 
 struct BuildOptions {
-  int local_sites = 6;        // solve a box directly once at most this many sites remain,
-  int affine_sites = 48;      // or at most this many of which
-  int bent_sites = 2;         // at most this many are not affine over the box
+  int local_sites = 16;       // solve a box directly once at most this many sites remain,
+  int affine_sites = 64;     // or at most this many of which
+  int bent_sites = 8;         // at most this many are not affine over the box
   double min_box = 1.0 / 64;  // never cut a box below this side (DBU)
 };
 

@@ -3,7 +3,8 @@
 //
 // 1. Every piece, sampled at its ends and inside: both owners at the same distance, the stated
 //    clearances at the ends, and no site of the diagram strictly closer.
-// 2. Random pairs of nearby points whose unique nearest sites differ: some piece crosses
+// 2. Random pairs of nearby points whose owners differ (by the ownership rule, see
+//    builder.hpp; pairs too close to a near-tie are skipped): some piece crosses
 //    the segment between them (no Voronoi edge is missing).
 #pragma once
 #include <cstdint>
