@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <thread>
+#include <atomic>
+#include <functional>
 #include <tuple>
 
 #include "affine.hpp"
@@ -64,32 +67,35 @@ struct LocalCell {
   std::vector<signed char> af, ag;  // active piece of f / g per local site, -1 unknown
 };
 
-class Builder {
- public:
-  Builder(const Sites& s, const Box& clip, const BuildOptions& opt) : S_(s.sites), clip_(clip), opt_(opt) {
-    f_.reserve(S_.size());
-    g_.reserve(S_.size());
+// What every worker shares, read-only: the sites and their distance functions.
+struct Model {
+  const std::vector<Site>& S;
+  Box clip;
+  BuildOptions opt;
+  std::vector<DistFn> f, g;  // L-inf, and the L1 tie-break
+  double tau = 0;            // rounding allowance in pruning decisions
+  Model(const Sites& s, const Box& c, const BuildOptions& o) : S(s.sites), clip(c), opt(o) {
+    f.reserve(S.size());
+    g.reserve(S.size());
     double scale = 1;
-    for (const Site& t : S_) {
-      f_.push_back(detail::make_distfn(t, detail::Norm::Linf));
-      g_.push_back(detail::make_distfn(t, detail::Norm::L1));
+    for (const Site& t : S) {
+      f.push_back(detail::make_distfn(t, detail::Norm::Linf));
+      g.push_back(detail::make_distfn(t, detail::Norm::L1));
       scale = std::max({scale, std::fabs(double(t.a.x)), std::fabs(double(t.a.y)), std::fabs(double(t.b.x)),
                         std::fabs(double(t.b.y))});
     }
-    scale = std::max({scale, std::fabs(clip.x1), std::fabs(clip.x2), std::fabs(clip.y1), std::fabs(clip.y2)});
-    tau_ = 1e-12 * scale;
+    scale = std::max({scale, std::fabs(c.x1), std::fabs(c.x2), std::fabs(c.y1), std::fabs(c.y2)});
+    tau = 1e-12 * scale;
   }
+};
 
-  std::vector<Piece> run() {
-    std::vector<int> all(S_.size());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
-    process(clip_, all);
-    return std::move(out_);
-  }
+// One worker: boxes in, raw pieces out. Boxes are independent, so workers run side by side.
+class Builder {
+ public:
+  explicit Builder(const Model& m) : S_(m.S), clip_(m.clip), opt_(m.opt), f_(m.f), g_(m.g), tau_(m.tau) {}
 
- private:
-  void process(const Box& b, const std::vector<int>& cand) {
-    ++stats.boxes;
+  // The sites that can own a point of b, from a superset `cand`.
+  std::vector<int> candidates(const Box& b, const std::vector<int>& cand) const {
     double U = INFINITY;
     for (int t : cand) {
       const DistFn& f = f_[t];
@@ -100,6 +106,12 @@ class Builder {
     for (int t : cand)
       if (box_distance(b, S_[t]) <= U + tau_) keep.push_back(t);
     if (keep.size() > 2) prune_ties(b, keep);
+    return keep;
+  }
+
+  void process(const Box& b, const std::vector<int>& cand) {
+    ++stats.boxes;
+    const std::vector<int> keep = candidates(b, cand);
     if (keep.size() <= 1) return;
     const double w = std::max(b.x2 - b.x1, b.y2 - b.y1);
     // Far from the sites whole groups tie in L-inf (a two-dimensional bisector region) and the
@@ -116,6 +128,10 @@ class Builder {
     process({mx, my, b.x2, b.y2}, keep);
   }
 
+  BuildStats stats;
+  std::vector<Piece> out;
+
+ private:
   // Far from the sites, whole groups share one affine L-inf function over the box (a
   // two-dimensional bisector region) and the count never drops by subdividing. Inside such a
   // group only the L1 tie-break decides, so members that lose on it everywhere in the box
@@ -247,16 +263,26 @@ class Builder {
 
   void regions(const LocalCell& lc, const std::vector<int>& C) {
     const std::size_t k = C.size();
+    // Clip first by the sites nearest at the cell's centre: most regions vanish at once.
+    Vec2 c{0, 0};
+    for (const Vec2& v : lc.cell.v) c.x += v.x, c.y += v.y;
+    c.x /= double(lc.cell.v.size()), c.y /= double(lc.cell.v.size());
+    std::vector<std::pair<double, std::size_t>> order(k);
+    for (std::size_t j = 0; j < k; ++j) order[j] = {f_[C[j]].piece[lc.af[j]].at(c.x, c.y), j};
+    std::sort(order.begin(), order.end());
     for (std::size_t i = 0; i < k; ++i) {
       Cell r = lc.cell;
-      for (std::size_t j = 0; j < k && !r.empty(); ++j) {
+      for (const auto& oj : order) {
+        const std::size_t j = oj.second;
         if (j == i) continue;
         Affine h;
         int always = -1;
-        if (compare(lc, C, i, j, h, always))
-          r = detail::clip(r, h, C[j]);
-        else if (!always)
+        if (compare(lc, C, i, j, h, always)) {
+          if (!detail::clip_in_place(r, h, C[j])) break;
+        } else if (!always) {
           r = Cell{};
+          break;
+        }
       }
       if (r.empty()) continue;
       emit(r, C[i], C);
@@ -269,35 +295,56 @@ class Builder {
     const double v = a.at(p.x, p.y);
     return {v, a.at(q.x, q.y) - v};
   }
-  // A distance function restricted to an edge: a convex piecewise-linear function of s.
+  // A distance function restricted to an edge: a convex piecewise-linear function of s on
+  // [0, 1], kept as its breakpoints and the line active after each.
   struct Profile {
-    Line L[6];
-    int n = 0;
-    double at(double s) const {
-      double m = -INFINITY;
-      for (int i = 0; i < n; ++i) m = std::max(m, L[i].v + s * L[i].d);
-      return m;
-    }
-    bool active(int i, double s) const {
-      const double v = L[i].v + s * L[i].d;
-      return v >= at(s) - 1e-12 * (1 + std::fabs(v));
-    }
+    std::vector<double> at;  // at[0] = 0 < at[1] < ... < 1
+    std::vector<Line> line;
   };
   static Profile profile(const DistFn& f, const Vec2& p, const Vec2& q) {
+    Line L[6];
+    for (int i = 0; i < f.n; ++i) L[i] = along(f.piece[i], p, q);
     Profile pr;
-    pr.n = f.n;
-    for (int i = 0; i < f.n; ++i) pr.L[i] = along(f.piece[i], p, q);
+    double s = 0;
+    int cur = 0;
+    for (int i = 1; i < f.n; ++i) {  // highest at 0, the steepest among ties
+      const double vi = L[i].v, vc = L[cur].v;
+      if (vi > vc || (vi == vc && L[i].d > L[cur].d)) cur = i;
+    }
+    for (;;) {
+      pr.at.push_back(s), pr.line.push_back(L[cur]);
+      int nxt = -1;
+      double ns = 1;
+      for (int i = 0; i < f.n; ++i) {  // the first steeper line to overtake
+        if (L[i].d <= L[cur].d) continue;
+        const double x = (L[cur].v - L[i].v) / (L[i].d - L[cur].d);
+        if (x > s + 1e-12 && x < ns) ns = x, nxt = i;
+      }
+      if (nxt < 0 || ns >= 1 - 1e-12) break;
+      s = ns, cur = nxt;
+    }
     return pr;
   }
-  // Interior parameters where the two profiles' active pieces cross (one profile: its breaks).
-  static void crossings(const Profile& A, const Profile& B, bool same, std::vector<double>& out) {
-    for (int i = 0; i < A.n; ++i)
-      for (int j = same ? i + 1 : 0; j < B.n; ++j) {
-        const double dd = A.L[i].d - B.L[j].d;
-        if (dd == 0) continue;
-        const double s = (B.L[j].v - A.L[i].v) / dd;
-        if (s > 1e-9 && s < 1 - 1e-9 && A.active(i, s) && B.active(j, s)) out.push_back(s);
-      }
+  // Interior parameters where the owner order of two profiles can change: the breakpoints
+  // of both and the places where they cross.
+  static void crossings(const Profile& A, const Profile& B, std::vector<double>& out) {
+    std::vector<double> bs(A.at.begin() + 1, A.at.end());
+    bs.insert(bs.end(), B.at.begin() + 1, B.at.end());
+    out.insert(out.end(), bs.begin(), bs.end());
+    bs.push_back(0), bs.push_back(1);
+    std::sort(bs.begin(), bs.end());
+    std::size_t ia = 0, ib = 0;
+    for (std::size_t k = 0; k + 1 < bs.size(); ++k) {
+      const double lo = bs[k], hi = bs[k + 1];
+      if (hi - lo <= 1e-12) continue;
+      const double mid = 0.5 * (lo + hi);
+      while (ia + 1 < A.at.size() && A.at[ia + 1] <= mid) ++ia;
+      while (ib + 1 < B.at.size() && B.at[ib + 1] <= mid) ++ib;
+      const Line &a = A.line[ia], &b = B.line[ib];
+      if (a.d == b.d) continue;
+      const double x = (b.v - a.v) / (a.d - b.d);
+      if (x > lo && x < hi) out.push_back(x);
+    }
   }
 
   void emit(const Cell& r, int t, const std::vector<int>& C) {
@@ -312,28 +359,30 @@ class Builder {
         continue;
       // The neighbour is found from this side, never from the edge's label: where several
       // sites tie in L-inf their bisector lines coincide, and the owner beyond can change
-      // along the edge where the tie-break changes. Those places are among the crossings of
-      // the affine pieces of the sites that reach t's distance somewhere on the edge.
-      const Line ft = along(f_[t].piece[f_[t].argmax(m.x, m.y)], p, q);
-      // Distances are 1-Lipschitz in L-inf: a site clearly farther at the midpoint never ties.
-      const double reach = std::max(std::fabs(q.x - p.x), std::fabs(q.y - p.y)) + tol(p) + tol(q);
-      const double fm = ft.v + 0.5 * ft.d;
-      std::vector<Profile> g{profile(g_[t], p, q)};
+      // along the edge where the L1 tie-break changes, that is at crossings of the tied
+      // sites' L1 profiles.
+      // Within the cell every L-inf function is affine, so a site ties with t along the whole
+      // edge iff it does at both ends, and no L-inf piece changes along the edge's interior.
+      const double ftp = f_[t].at(p.x, p.y), ftq = f_[t].at(q.x, q.y);
+      std::vector<int> tied{t};
+      for (int u : C)
+        if (u != t && std::fabs(f_[u].at(p.x, p.y) - ftp) <= tol(p) && std::fabs(f_[u].at(q.x, q.y) - ftq) <= tol(q))
+          tied.push_back(u);
+      if (tied.size() == 1) continue;  // a split inside t's own region
+      // Only sites that also share the least slope across the edge go to the L1 tie-break.
+      const double len = std::hypot(nrm.x, nrm.y);
+      const Vec2 un{nrm.x / len, nrm.y / len};
+      std::vector<double> sl(tied.size());
+      double smin = INFINITY;
+      for (std::size_t i = 0; i < tied.size(); ++i)
+        smin = std::min(smin, sl[i] = slope(f_[tied[i]], m, un, f_[tied[i]].at(m.x, m.y), tol(m)));
+      std::vector<Profile> g;
+      for (std::size_t i = 0; i < tied.size(); ++i)
+        if (sl[i] <= smin + 1e-12) g.push_back(profile(g_[tied[i]], p, q));
       std::vector<double> cuts{0.0, 1.0};
-      for (int u : C) {
-        if (u == t || f_[u].at(m.x, m.y) - fm > reach) continue;
-        const Profile fu = profile(f_[u], p, q);
-        std::vector<double> breaks;
-        crossings(fu, fu, true, breaks);
-        double gap = std::min(fu.at(0) - ft.v, fu.at(1) - ft.v - ft.d);
-        for (double s : breaks) gap = std::min(gap, fu.at(s) - (ft.v + s * ft.d));
-        if (gap > tol(p) + tol(q)) continue;
-        cuts.insert(cuts.end(), breaks.begin(), breaks.end());
-        g.push_back(profile(g_[u], p, q));
-      }
-      if (g.size() == 1) continue;  // a split inside t's own region
-      for (std::size_t i = 0; i < g.size(); ++i)
-        for (std::size_t j = i; j < g.size(); ++j) crossings(g[i], g[j], i == j, cuts);
+      if (g.size() > 1)
+        for (std::size_t i = 0; i < g.size(); ++i)
+          for (std::size_t j = i + 1; j < g.size(); ++j) crossings(g[i], g[j], cuts);
       std::sort(cuts.begin(), cuts.end());
       for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
         if (cuts[i + 1] - cuts[i] <= 1e-9) continue;
@@ -354,7 +403,7 @@ class Builder {
     pc.a = t, pc.b = u;
     pc.d1 = f_[t].at(p.x, p.y);
     pc.d2 = f_[t].at(q.x, q.y);
-    out_.push_back(pc);
+    out.push_back(pc);
   }
 
   double tol(const Vec2& p) const { return tau_ + 1e-13 * (std::fabs(p.x) + std::fabs(p.y)); }
@@ -394,16 +443,12 @@ class Builder {
   }
 
 
- public:
-  BuildStats stats;
-
- private:
   const std::vector<Site>& S_;
-  Box clip_;
-  BuildOptions opt_;
-  std::vector<DistFn> f_, g_;
-  double tau_ = 0;
-  std::vector<Piece> out_;
+  const Box clip_;
+  const BuildOptions opt_;
+  const std::vector<DistFn>& f_;
+  const std::vector<DistFn>& g_;
+  const double tau_;
 };
 
 // Joins pieces of the same two owners that continue each other in a straight line.
@@ -450,10 +495,47 @@ std::vector<Piece> join_pieces(std::vector<Piece> in) {
 
 std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats) {
   if (sites.sites.size() < 2) return {};
-  Builder b(sites, clip, opt);
-  std::vector<Piece> raw = b.run();
-  b.stats.raw_pieces = raw.size();
-  if (stats) *stats = b.stats;
+  const Model model(sites, clip, opt);
+  // The top levels of the subdivision, breadth first, become the workers' tasks.
+  std::vector<std::pair<Box, std::vector<int>>> tasks, next;
+  {
+    std::vector<int> all(sites.sites.size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
+    tasks.emplace_back(clip, std::move(all));
+    const Builder top(model);
+    for (int level = 0; level < 3; ++level) {
+      next.clear();
+      for (auto& [b, cand] : tasks) {
+        const double mx = 0.5 * (b.x1 + b.x2), my = 0.5 * (b.y1 + b.y2);
+        for (const Box& q : {Box{b.x1, b.y1, mx, my}, Box{mx, b.y1, b.x2, my}, Box{b.x1, my, mx, b.y2},
+                             Box{mx, my, b.x2, b.y2}}) {
+          std::vector<int> keep = top.candidates(q, cand);
+          if (keep.size() > 1) next.emplace_back(q, std::move(keep));
+        }
+      }
+      tasks.swap(next);
+    }
+  }
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned n = std::min<unsigned>(opt.threads > 0 ? unsigned(opt.threads) : hw, unsigned(tasks.size()));
+  std::vector<Builder> workers(std::max(1u, n), Builder(model));
+  std::atomic<std::size_t> next_task{0};
+  auto work = [&](Builder& w) {
+    for (std::size_t i; (i = next_task++) < tasks.size();) w.process(tasks[i].first, tasks[i].second);
+  };
+  std::vector<std::thread> threads;
+  for (std::size_t i = 1; i < workers.size(); ++i) threads.emplace_back(work, std::ref(workers[i]));
+  work(workers[0]);
+  for (auto& t : threads) t.join();
+  std::vector<Piece> raw;
+  BuildStats st;
+  for (Builder& w : workers) {
+    raw.insert(raw.end(), w.out.begin(), w.out.end());
+    st.boxes += w.stats.boxes, st.solves += w.stats.solves, st.solved_sites += w.stats.solved_sites;
+    st.cells += w.stats.cells;
+  }
+  st.raw_pieces = raw.size();
+  if (stats) *stats = st;
   return join_pieces(std::move(raw));
 }
 

@@ -49,6 +49,15 @@ Cell clip(const Cell& in, const Affine& h, int label) {
   return clean;
 }
 
+bool clip_in_place(Cell& c, const Affine& h, int label) {
+  for (const Vec2& p : c.v)
+    if (h.at(p.x, p.y) < -16 * h.err(p.x, p.y)) {
+      c = clip(c, h, label);
+      return !c.empty();
+    }
+  return !c.empty();
+}
+
 double area(const Cell& c) {
   double s = 0;
   for (std::size_t i = 0, n = c.v.size(); i < n; ++i) {

@@ -28,6 +28,10 @@ inline Cell box_cell(const Box& b) {
 // count as on the line, so a line through a vertex never produces a sliver.
 Cell clip(const Cell& in, const Affine& h, int label);
 
+// The same in place, without copying when the half-plane holds the whole cell (the common
+// case). Returns false once the cell is empty.
+bool clip_in_place(Cell& c, const Affine& h, int label);
+
 double area(const Cell& c);
 
 }  // namespace linf::detail

@@ -24,6 +24,7 @@ struct BuildOptions {
   int affine_sites = 64;     // or at most this many of which
   int bent_sites = 8;         // at most this many are not affine over the box
   double min_box = 1.0 / 64;  // never cut a box below this side (DBU)
+  int threads = 0;            // workers; 0: one per hardware thread
 };
 
 struct BuildStats {

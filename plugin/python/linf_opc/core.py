@@ -1,0 +1,9 @@
+"""Locates the compiled core (linf_opc_core), installed beside this package or on sys.path."""
+try:
+    from . import linf_opc_core as _core  # installed KLayout package
+except ImportError:  # a checkout: the build directory is on sys.path
+    import linf_opc_core as _core
+
+voronoi_polygons = _core.voronoi_polygons
+voronoi_sites = _core.voronoi_sites
+DiagramError = _core.DiagramError

@@ -1,0 +1,33 @@
+"""The diagram stage.
+
+in:  polygons [(outer, [holes])] in integer DBU
+out: Diagram: pieces [Piece], site count, clip box, checker report, timings
+A wrong diagram is never returned: the core's independent checker raises DiagramError.
+"""
+import time
+from collections import Counter, namedtuple
+
+from . import core
+
+KINDS = ("internal", "external", "notch", "adjacent")
+
+Piece = namedtuple("Piece", "kind x1 y1 x2 y2 d1 d2 a_x1 a_y1 a_x2 a_y2 b_x1 b_y1 b_x2 b_y2 site_a site_b")
+
+
+class Diagram:
+    def __init__(self, raw, seconds_total):
+        self.pieces = [Piece(*p) for p in raw["pieces"]]
+        self.sites = raw["sites"]
+        self.clip = raw["clip"]
+        self.check = raw["check"]
+        self.seconds = dict(raw["seconds"], total=seconds_total)
+
+    def counts(self):
+        c = Counter(p.kind for p in self.pieces)
+        return {k: c.get(k, 0) for k in KINDS}
+
+
+def compute(polygons, check=True, check_pairs=2000):
+    t0 = time.perf_counter()
+    raw = core.voronoi_polygons(polygons, check, check_pairs)
+    return Diagram(raw, time.perf_counter() - t0)

@@ -1,0 +1,62 @@
+"""Writing a Diagram: CSV in micrometres, layout layers, summary JSON."""
+import csv
+import json
+
+import pya
+
+from .diagram import KINDS
+
+CSV_HEADER = ["kind", "x1", "y1", "x2", "y2", "d1", "d2",
+              "a_x1", "a_y1", "a_x2", "a_y2", "b_x1", "b_y1", "b_x2", "b_y2"]
+
+# Diagram layers sit on the input's layer number, datatypes 200 + kind index, so that they
+# sort next to the input in the layer list and never collide with drawn datatypes.
+DATATYPE_BASE = 200
+
+
+def diagram_layer_info(layer, datatype, kind):
+    return pya.LayerInfo(layer, DATATYPE_BASE + KINDS.index(kind), "voronoi_%s (%d/%d)" % (kind, layer, datatype))
+
+
+def write_csv(diagram, path, dbu):
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(CSV_HEADER)
+        for p in diagram.pieces:
+            w.writerow([p.kind] + ["%.6f" % (v * dbu) for v in p[1:15]])
+
+
+def add_layers(layout, cell, diagram, layer, datatype):
+    """Draws every piece as a zero-width path on its kind's layer (cleared first, so the
+    action can be repeated). Returns {kind: layer index}."""
+    out = {}
+    for kind in KINDS:
+        info = diagram_layer_info(layer, datatype, kind)
+        index = layout.find_layer(info)
+        if index is None:
+            index = layout.insert_layer(info)
+        cell.shapes(index).clear()
+        out[kind] = index
+    for p in diagram.pieces:
+        path = pya.Path([pya.Point(round(p.x1), round(p.y1)), pya.Point(round(p.x2), round(p.y2))], 0)
+        cell.shapes(out[p.kind]).insert(path)
+    return out
+
+
+def summary(diagram, dbu, **extra):
+    s = {
+        "dbu": round(dbu, 12),
+        "sites": diagram.sites,
+        "pieces": len(diagram.pieces),
+        "counts": diagram.counts(),
+        "check": {k: v for k, v in diagram.check.items() if k != "messages"},
+        "seconds": diagram.seconds,
+    }
+    s.update(extra)
+    return s
+
+
+def write_json(data, path):
+    with open(path, "w") as f:
+        json.dump(data, f, indent=2, sort_keys=True)
+        f.write("\n")
