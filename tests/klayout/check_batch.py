@@ -1,0 +1,115 @@
+# Runs the batch macro on one layout and checks its outputs independently of the core:
+#   klayout -b -r tests/klayout/check_batch.py -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd work=DIR
+# - voronoi.csv: exact header, one row per piece, kinds as in summary.json;
+# - voronoi.oas: the merged input layer and one layer per kind, with as many shapes as rows;
+# - clearances, with KLayout's own geometry: around a sampled piece end (x, y) with clearance d,
+#   the square of half-side d - 2 DBU holds no boundary of the layer and the one of d + 2 DBU
+#   meets it; the two owner sites written in the row are at L-inf distance d.
+# Exit code 0 when all hold; the first failures are printed.
+import csv
+import json
+import math
+import os
+import random
+import subprocess
+import sys
+
+import pya
+
+g = globals()
+repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+work = g.get("work") or "/tmp/linf_check"
+args = ["-rd", "cmd=voronoi", "-rd", "input=" + g["input"], "-rd", "layer=" + g["layer"], "-rd", "out=" + work]
+if g.get("cell"):
+    args += ["-rd", "cell=" + g["cell"]]
+failures = []
+
+
+def expect(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL: " + what)
+
+
+run = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args,
+                     capture_output=True, text=True)
+print(run.stdout.strip())
+if run.returncode != 0:
+    print(run.stderr)
+    sys.exit(1)
+
+summary = json.load(open(os.path.join(work, "summary.json")))
+with open(os.path.join(work, "voronoi.csv")) as f:
+    rows = list(csv.reader(f))
+expect(rows[0] == "kind,x1,y1,x2,y2,d1,d2,a_x1,a_y1,a_x2,a_y2,b_x1,b_y1,b_x2,b_y2".split(","), "csv header")
+rows = rows[1:]
+expect(len(rows) == summary["pieces"] and len(rows) > 0, "csv rows %d vs summary %d" % (len(rows), summary["pieces"]))
+counts = {}
+for r in rows:
+    counts[r[0]] = counts.get(r[0], 0) + 1
+expect(set(counts) <= {"internal", "external", "notch", "adjacent"}, "kinds %s" % sorted(counts))
+expect(all(counts.get(k, 0) == n for k, n in summary["counts"].items()), "counts %s vs %s" % (counts, summary["counts"]))
+expect(summary["check"]["ok"], "core checker")
+expect(counts.get("adjacent", 0) > 0, "adjacent pieces exist")
+
+# The input as KLayout sees it.
+L, D = [int(v) for v in g["layer"].split("/")]
+src = pya.Layout()
+src.read(g["input"])
+cell = src.cell(g["cell"]) if g.get("cell") else src.top_cells()[0]
+region = pya.Region(cell.begin_shapes_rec(src.find_layer(L, D))).merged()
+dbu = src.dbu
+expect(abs(summary["dbu"] - dbu) < 1e-12, "dbu")
+
+res = pya.Layout()
+res.read(os.path.join(work, "voronoi.oas"))
+top = res.top_cells()[0]
+inp = res.find_layer(L, D)
+expect(inp is not None and pya.Region(top.shapes(inp)).count() == region.count(), "input layer copied")
+for i, kind in enumerate(["internal", "external", "notch", "adjacent"]):
+    li = res.find_layer(L, 200 + i)
+    n = top.shapes(li).size() if li is not None else 0
+    expect(n == counts.get(kind, 0), "layer %d/%d holds %d %s pieces, csv %d" % (L, 200 + i, n, kind, counts.get(kind, 0)))
+
+edges = region.edges()
+
+
+def linf_to(px, py, ax, ay, bx, by):
+    dx, dy = bx - ax, by - ay
+    best = float("inf")
+    ts = [0.0, 1.0]
+    if dx: ts.append((px - ax) / dx)
+    if dy: ts.append((py - ay) / dy)
+    if dx - dy: ts.append(((px - ax) - (py - ay)) / (dx - dy))
+    if dx + dy: ts.append(((px - ax) + (py - ay)) / (dx + dy))
+    for t in ts:
+        t = min(1.0, max(0.0, t))
+        best = min(best, max(abs(px - ax - t * dx), abs(py - ay - t * dy)))
+    return best
+
+
+random.seed(1)
+sample = random.sample(rows, min(300, len(rows)))
+bad = 0
+for r in sample:
+    v = [float(x) / dbu for x in r[1:]]  # to DBU
+    for (x, y, d) in ((v[0], v[1], v[4]), (v[2], v[3], v[5])):
+        da = linf_to(x, y, *v[6:10])
+        db = linf_to(x, y, *v[10:14])
+        if abs(da - d) > 0.01 or abs(db - d) > 0.01:
+            bad += 1
+            if bad < 5: print("owner distance", r, da, db)
+        if d <= 1:  # on the boundary: nothing to test with integer boxes
+            continue
+        # Integer boxes, and edges that merely touch a box count as meeting it: 2 DBU of slack.
+        inner = pya.Box(math.ceil(x - d + 2), math.ceil(y - d + 2), math.floor(x + d - 2), math.floor(y + d - 2))
+        outer = pya.Box(math.floor(x - d - 2), math.floor(y - d - 2), math.ceil(x + d + 2), math.ceil(y + d + 2))
+        if inner.width() > 0 and inner.height() > 0 and not edges.interacting(pya.Region(inner)).is_empty():
+            bad += 1
+            if bad < 5: print("boundary closer than the clearance", r)
+        if edges.interacting(pya.Region(outer)).is_empty():
+            bad += 1
+            if bad < 5: print("no boundary at the clearance", r)
+expect(bad == 0, "%d clearance failures in %d sampled pieces" % (bad, len(sample)))
+print("checked %d rows, %d sampled ends; %s" % (len(rows), 2 * len(sample), "FAILED" if failures else "ok"))
+sys.exit(1 if failures else 0)

@@ -1,0 +1,150 @@
+# GUI test, run by run_gui.sh inside KLayout under Xvfb with a temporary KLAYOUT_HOME that holds
+# the installed package:
+#   klayout -rr tests/klayout/gui_menu.py -rd input=FILE -rd layer=L/D -rd shot=PNG -rd log=TXT
+# Loads the layout, selects the layer, triggers Tools > L-inf Voronoi OPC > Voronoi diagram of
+# current layer through the menu, asserts the diagram layers and undo, saves a screenshot.
+import os
+
+import pya
+
+g = globals()
+app = pya.Application.instance()
+mw = app.main_window()
+failures = []
+# In GUI mode print() goes to KLayout's console, so the test writes its own log.
+log = open(g.get("log") or "/dev/stderr", "w")
+
+
+def say(text):
+    log.write(text + "\n")
+    log.flush()
+
+
+def expect(cond, what):
+    say(("ok:   " if cond else "FAIL: ") + what)
+    if not cond:
+        failures.append(what)
+
+
+def finish():
+    say("gui test %s" % ("FAILED" if failures else "passed"))
+    app.exit(1 if failures else 0)
+
+
+def close_modal():
+    """A modal dialog during the test is a failure, never a hang."""
+    w = pya.QApplication.activeModalWidget()
+    if w is not None:
+        texts, todo = [], list(w.children())
+        while todo:
+            c = todo.pop()
+            todo.extend(c.children())
+            if "Label" in type(c).__name__ and c.text:
+                texts.append(c.text)
+        expect(False, "a modal dialog came up: %s: %s" % (w.windowTitle, " / ".join(texts)))
+        w.close()
+
+
+watchdog = pya.QTimer()
+watchdog.interval = 1000
+watchdog.timeout = close_modal
+watchdog.start()
+
+L, D = [int(v) for v in g["layer"].split("/")]
+
+
+def load():
+    """Once the event loop is up: load the layout; the layer list fills in from the loop."""
+    try:
+        mw.load_layout(g["input"], 0)
+    except Exception as e:
+        expect(False, "exception: %s" % e)
+        finish()
+        return
+    later(1500, run_test)
+
+
+def run_test():
+    try:
+        view = mw.current_view()
+        ly = view.active_cellview().layout()
+        # Select the layer in the layer list, as the user does.
+        select(view, ly)
+        expect(not view.current_layer.is_null() and view.current_layer.current().layer_index() == ly.find_layer(L, D),
+               "layer %d/%d selected" % (L, D))
+        action = mw.menu().action("tools_menu.linf_opc.voronoi")
+        expect(action is not None and mw.menu().is_valid("tools_menu.linf_opc.voronoi"), "menu entry registered")
+        action.trigger()
+        cell = view.active_cellview().cell
+        counts = {}
+        for i, kind in enumerate(["internal", "external", "notch", "adjacent"]):
+            li = ly.find_layer(L, 200 + i)
+            counts[kind] = cell.shapes(li).size() if li is not None else 0
+        say("diagram shapes per kind: %s" % counts)
+        expect(all(counts[k] > 0 for k in ("internal", "external", "adjacent")), "diagram layers filled")
+        shown = set()
+        it = view.begin_layers()
+        while not it.at_end():
+            shown.add(it.current().layer_index())
+            it.next()
+        expect(ly.find_layer(L, 200) in shown and ly.find_layer(L, 203) in shown, "diagram layers in the layer list")
+        view.max_hier_levels = 99
+        view.zoom_fit()
+        state.update(view=view, ly=ly, cell=cell, action=action, counts=counts)
+        later(1000, second_step)
+        return
+    except Exception as e:  # any error fails the test, never hangs it
+        expect(False, "exception: %s" % e)
+    finish()
+
+
+timers = []
+
+
+def later(ms, f):
+    t = pya.QTimer()
+    t.singleShot = True
+    t.interval = ms
+    t.timeout = f
+    t.start()
+    timers.append(t)
+
+
+state = {}
+
+
+def select(view, ly):
+    """Selects the input layer in the layer list, as the user does by clicking it."""
+    target = ly.find_layer(L, D)
+    it = view.begin_layers()
+    while not it.at_end():
+        if it.current().layer_index() == target:
+            view.current_layer = it
+            return True
+        it.next()
+    return False
+
+
+def second_step():
+    """Editor mode: one undo removes the whole diagram (the action is a transaction).
+    Viewer mode: running again replaces the diagram instead of adding a second copy."""
+    try:
+        view, ly, cell = state["view"], state["ly"], state["cell"]
+        view.save_image(g["shot"], 1200, 800)
+        # An empty view (grid only) encodes to about 9 KB; the drawn diagram to more.
+        expect(os.path.getsize(g["shot"]) > 12000, "screenshot %s (%d bytes)" % (g["shot"], os.path.getsize(g["shot"])))
+        if ly.is_editable():
+            mw.cm_undo()
+            li = ly.find_layer(L, 200)
+            expect(li is None or cell.shapes(li).size() == 0, "undo removes the diagram")
+        else:
+            select(view, ly)
+            state["action"].trigger()
+            n = cell.shapes(ly.find_layer(L, 203)).size()
+            expect(n == state["counts"]["adjacent"], "a second run replaces the diagram (%d adjacent)" % n)
+    except Exception as e:
+        expect(False, "exception: %s" % e)
+    finish()
+
+
+later(500, load)
