@@ -3,6 +3,8 @@
 #include <pybind11/stl.h>
 
 #include "linf/diagram.hpp"
+#include "linf/engine.hpp"
+#include "linf/sites.hpp"
 
 namespace py = pybind11;
 using namespace linf;
@@ -88,6 +90,23 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "Returns {'pieces': [(kind, x1, y1, x2, y2, d1, d2, a_x1, a_y1, a_x2, a_y2, b_x1, b_y1, b_x2, b_y2,\n"
       "site_a, site_b)], 'check': {...}, 'sites': n, 'clip': box, 'seconds': {...}}.\n"
       "Raises DiagramError if the independent checker rejects the diagram.");
+
+  m.def(
+      "cgal_construction_seconds",
+      [](const std::vector<std::pair<std::vector<XY>, std::vector<std::vector<XY>>>>& polys, std::uint64_t seed) {
+        std::vector<Polygon> in;
+        for (auto& p : polys) {
+          Polygon q;
+          q.outer = ring_of(p.first);
+          for (auto& h : p.second) q.holes.push_back(ring_of(h));
+          in.push_back(std::move(q));
+        }
+        py::gil_scoped_release unlocked;
+        return cgal_linf_construction_seconds(sites_of_polygons(merge_polygons(in)), seed);
+      },
+      py::arg("polygons"), py::arg("seed") = 1,
+      "Benchmark baseline: seconds CGAL's Segment_Delaunay_graph_Linf_2 takes to construct the diagram of the\n"
+      "same sites (range insertion, segments in shuffled order). Its result is not used: it can be wrong.");
 
   m.def(
       "voronoi_sites",

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <numeric>
 #include <random>
 #include <stdexcept>
@@ -69,8 +70,16 @@ Vec2 to_vec(const CK::Direction_2& d) { return {d.dx(), d.dy()}; }
 
 }  // namespace
 
-std::vector<RawEdge> cgal_linf_edges(const Sites& sites, std::uint64_t order_seed) {
+namespace {
+struct CgalInput {
   std::vector<CK::Point_2> pts;
+  std::vector<std::pair<std::size_t, std::size_t>> segs;
+};
+}  // namespace
+
+static CgalInput cgal_input(const Sites& sites, std::uint64_t order_seed) {
+  CgalInput in;
+  auto& pts = in.pts;
   std::unordered_map<std::pair<double, double>, std::size_t, PointHash> point_slot;
   auto slot = [&](const Point& p) {
     auto k = std::make_pair(double(p.x), double(p.y));
@@ -78,7 +87,7 @@ std::vector<RawEdge> cgal_linf_edges(const Sites& sites, std::uint64_t order_see
     if (fresh) pts.emplace_back(k.first, k.second);
     return it->second;
   };
-  std::vector<std::pair<std::size_t, std::size_t>> segs;
+  auto& segs = in.segs;
   for (const Site& s : sites.sites) {
     if (s.is_point())
       slot(s.a);
@@ -89,7 +98,21 @@ std::vector<RawEdge> cgal_linf_edges(const Sites& sites, std::uint64_t order_see
     std::mt19937_64 rng(order_seed);
     std::shuffle(segs.begin(), segs.end(), rng);
   }
+  return in;
+}
 
+double cgal_linf_construction_seconds(const Sites& sites, std::uint64_t order_seed) {
+  CgalInput in = cgal_input(sites, order_seed);
+  const auto t0 = std::chrono::steady_clock::now();
+  SDG sdg;
+  sdg.insert_segments(in.pts, in.segs.begin(), in.segs.end());
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<RawEdge> cgal_linf_edges(const Sites& sites, std::uint64_t order_seed) {
+  CgalInput in = cgal_input(sites, order_seed);
+  auto& pts = in.pts;
+  auto& segs = in.segs;
   SDG sdg;
   // Range insertion: points spatially sorted, then segments between existing vertices.
   // Inserting one by one into the hierarchy can hang (foundation issue, case 4).

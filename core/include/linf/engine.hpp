@@ -1,5 +1,6 @@
-// The construction engine: CGAL's L-inf segment Delaunay graph, turned into plain polylines.
-// It is not trusted: every result goes through the checker (checker.hpp) before it is used.
+// CGAL's L-inf segment Delaunay graph (the thesis's implementation), turned into plain
+// polylines. Not used to build diagrams: it is wrong on some inputs (tests/cpp/
+// test_reproducers.cpp). It serves as the speed baseline and to show the checker at work.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -22,6 +23,9 @@ struct RawEdge {
 // `order_seed` permutes the segment insertion order: CGAL's failures depend on it.
 // Throws std::runtime_error if a CGAL site cannot be mapped back to an input site.
 std::vector<RawEdge> cgal_linf_edges(const Sites& sites, std::uint64_t order_seed);
+
+// Wall time of CGAL's construction alone (range insertion), the benchmark's baseline.
+double cgal_linf_construction_seconds(const Sites& sites, std::uint64_t order_seed);
 
 // The same edges as pieces clipped to `clip` (clearances from the first owner), for the
 // checker and for comparisons. CGAL's assertion failures come through as exceptions.

@@ -6,4 +6,5 @@ except ImportError:  # a checkout: the build directory is on sys.path
 
 voronoi_polygons = _core.voronoi_polygons
 voronoi_sites = _core.voronoi_sites
+cgal_construction_seconds = _core.cgal_construction_seconds
 DiagramError = _core.DiagramError

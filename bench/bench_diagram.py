@@ -1,0 +1,71 @@
+# Speed of the whole diagram stage against CGAL's raw construction, same input, same run:
+#   klayout -b -r bench/bench_diagram.py [-rd input=FILE -rd layer=L/D [-rd cell=NAME]]
+# Default input: ../shared/data/freepdk45/sram_8_128_freepdk45.gds, 11/0 (metal1).
+# "whole" = read + merge + build + independent check + classify + CSV written; "CGAL" = the
+# insertion into Segment_Delaunay_graph_Linf_2 alone. Prints both and their ratio.
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(repo, "build"))
+sys.path.insert(0, os.path.join(repo, "plugin", "python"))
+
+import pya  # noqa: E402
+
+from linf_opc import core, diagram, layout, output  # noqa: E402
+
+g = globals()
+path = g.get("input") or os.path.join(repo, "..", "shared", "data", "freepdk45", "sram_8_128_freepdk45.gds")
+L, D = layout.parse_layer(g.get("layer") or "11/0")
+ly = pya.Layout()
+ly.read(path)
+cell = ly.cell(g["cell"]) if g.get("cell") else ly.top_cells()[0]
+li = ly.find_layer(L, D)
+
+t0 = time.perf_counter()
+polygons = layout.polygons_of(layout.region_of(cell, li))
+t_read = time.perf_counter() - t0
+d = diagram.compute(polygons)
+t0 = time.perf_counter()
+with tempfile.TemporaryDirectory() as tmp:
+    output.write_csv(d, os.path.join(tmp, "voronoi.csv"), ly.dbu)
+t_write = time.perf_counter() - t0
+whole = t_read + d.seconds["total"] + t_write
+
+# CGAL in its own process with a deadline: it hangs on some real layouts. Original segment
+# order first (seed 0), then shuffled orders.
+deadline = float(g.get("deadline") or 1800)
+t_cgal = None
+cgal_notes = []
+with tempfile.TemporaryDirectory() as tmp:
+    data = os.path.join(tmp, "polygons.json")
+    with open(data, "w") as f:
+        json.dump(polygons, f)
+    for seed in (0, 1, 2):
+        try:
+            run = subprocess.run(["/usr/bin/python3", os.path.join(repo, "bench", "cgal_baseline.py"), data, str(seed)],
+                                 capture_output=True, text=True, timeout=deadline)
+        except subprocess.TimeoutExpired:
+            cgal_notes.append("order %d: no result after %.0f s" % (seed, deadline))
+            continue
+        if run.returncode != 0:
+            cgal_notes.append("order %d: crashed (exit %d)" % (seed, run.returncode))
+            continue
+        t_cgal = float(run.stdout.split()[-1])
+        cgal_notes.append("order %d: %.2f s" % (seed, t_cgal))
+        break
+
+print("input: %s %d/%d cell %s: %d merged polygons, %d sites, %d pieces, check %s"
+      % (os.path.basename(path), L, D, cell.name, len(polygons), d.sites, len(d.pieces),
+         "ok" if d.check["ok"] else "FAILED"))
+print("whole diagram: %.2f s (read %.2f, merge %.2f, build %.2f, check %.2f, write csv %.2f)"
+      % (whole, t_read, d.seconds["merge"], d.seconds["build"], d.seconds["check"], t_write))
+print("CGAL construction alone: %s" % "; ".join(cgal_notes))
+if t_cgal:
+    print("ratio whole / CGAL: %.2f (goal: under 2)" % (whole / t_cgal))
+else:
+    print("ratio whole / CGAL: none, CGAL gave no result")
