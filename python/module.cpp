@@ -19,6 +19,20 @@ Ring ring_of(const std::vector<XY>& pts) {
   return r;
 }
 
+using PyPolygons = std::vector<std::pair<std::vector<XY>, std::vector<std::vector<XY>>>>;
+
+std::vector<Polygon> polygons_of(const PyPolygons& polys) {
+  std::vector<Polygon> in;
+  in.reserve(polys.size());
+  for (auto& p : polys) {
+    Polygon q;
+    q.outer = ring_of(p.first);
+    for (auto& h : p.second) q.holes.push_back(ring_of(h));
+    in.push_back(std::move(q));
+  }
+  return in;
+}
+
 py::dict to_python(const Result& r) {
   const Diagram& d = r.diagram;
   const auto& S = d.sites.sites;
@@ -74,15 +88,8 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "voronoi_polygons",
-      [](const std::vector<std::pair<std::vector<XY>, std::vector<std::vector<XY>>>>& polys, bool check, int pairs) {
-        std::vector<Polygon> in;
-        in.reserve(polys.size());
-        for (auto& p : polys) {
-          Polygon q;
-          q.outer = ring_of(p.first);
-          for (auto& h : p.second) q.holes.push_back(ring_of(h));
-          in.push_back(std::move(q));
-        }
+      [](const PyPolygons& polys, bool check, int pairs) {
+        const std::vector<Polygon> in = polygons_of(polys);
         return guarded([&] { return voronoi_of_polygons(in, options(check, pairs)); });
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000,
@@ -93,14 +100,8 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "cgal_construction_seconds",
-      [](const std::vector<std::pair<std::vector<XY>, std::vector<std::vector<XY>>>>& polys, std::uint64_t seed) {
-        std::vector<Polygon> in;
-        for (auto& p : polys) {
-          Polygon q;
-          q.outer = ring_of(p.first);
-          for (auto& h : p.second) q.holes.push_back(ring_of(h));
-          in.push_back(std::move(q));
-        }
+      [](const PyPolygons& polys, std::uint64_t seed) {
+        const std::vector<Polygon> in = polygons_of(polys);
         py::gil_scoped_release unlocked;
         return cgal_linf_construction_seconds(sites_of_polygons(merge_polygons(in)), seed);
       },

@@ -207,7 +207,7 @@ class Builder {
       for (int jj = 0; jj < fn.n; ++jj) {
         Cell c = lc.cell;
         for (int i = 0; i < fn.n && !c.empty(); ++i)
-          if (i != jj) c = detail::clip(c, minus(fn.piece[jj], fn.piece[i]), Cell::kBoundary);
+          if (i != jj) c = detail::clip(c, minus(fn.piece[jj], fn.piece[i]));
         if (c.empty()) continue;
         LocalCell sub{std::move(c), lc.af, lc.ag};
         (use_g ? sub.ag : sub.af)[k] = static_cast<signed char>(jj);
@@ -278,7 +278,7 @@ class Builder {
         Affine h;
         int always = -1;
         if (compare(lc, C, i, j, h, always)) {
-          if (!detail::clip_in_place(r, h, C[j])) break;
+          if (!detail::clip_in_place(r, h)) break;
         } else if (!always) {
           r = Cell{};
           break;
@@ -357,7 +357,7 @@ class Builder {
       if ((nrm.x < 0 && m.x <= clip_.x1) || (nrm.x > 0 && m.x >= clip_.x2) || (nrm.y < 0 && m.y <= clip_.y1) ||
           (nrm.y > 0 && m.y >= clip_.y2))
         continue;
-      // The neighbour is found from this side, never from the edge's label: where several
+      // The neighbour is found from this side, not from the clip that made the edge: where several
       // sites tie in L-inf their bisector lines coincide, and the owner beyond can change
       // along the edge where the L1 tie-break changes, that is at crossings of the tied
       // sites' L1 profiles.

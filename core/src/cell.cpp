@@ -4,7 +4,7 @@
 
 namespace linf::detail {
 
-Cell clip(const Cell& in, const Affine& h, int label) {
+Cell clip(const Cell& in, const Affine& h) {
   const std::size_t n = in.v.size();
   Cell out;
   if (n < 3) return out;
@@ -20,20 +20,14 @@ Cell clip(const Cell& in, const Affine& h, int label) {
   if (all_in) return in;
   if (all_out) return out;
   out.v.reserve(n + 1);
-  out.label.reserve(n + 1);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = (i + 1) % n;
     const double vi = val[i], vj = val[j];
-    if (vi >= 0) {
-      out.v.push_back(in.v[i]);
-      // The edge i->j keeps its label if j is kept too; if it leaves, the new edge starts here.
-      out.label.push_back(vj >= 0 ? in.label[i] : (vi == 0 ? label : in.label[i]));
-    }
+    if (vi >= 0) out.v.push_back(in.v[i]);
     if ((vi > 0 && vj < 0) || (vi < 0 && vj > 0)) {
       const double t = vi / (vi - vj);
       Vec2 p{in.v[i].x + t * (in.v[j].x - in.v[i].x), in.v[i].y + t * (in.v[j].y - in.v[i].y)};
       out.v.push_back(p);
-      out.label.push_back(vi > 0 ? label : in.label[i]);
     }
   }
   // Drop repeated vertices that rounding can produce.
@@ -43,16 +37,15 @@ Cell clip(const Cell& in, const Affine& h, int label) {
     const Vec2& q = out.v[(i + 1) % out.v.size()];
     if (p.x == q.x && p.y == q.y) continue;
     clean.v.push_back(p);
-    clean.label.push_back(out.label[i]);
   }
   if (clean.v.size() < 3 || area(clean) <= 0) return Cell{};
   return clean;
 }
 
-bool clip_in_place(Cell& c, const Affine& h, int label) {
+bool clip_in_place(Cell& c, const Affine& h) {
   for (const Vec2& p : c.v)
     if (h.at(p.x, p.y) < -16 * h.err(p.x, p.y)) {
-      c = clip(c, h, label);
+      c = clip(c, h);
       return !c.empty();
     }
   return !c.empty();

@@ -78,18 +78,17 @@ Ring from_boost(const BSimple& s) {
 }  // namespace
 
 std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in) {
-  using namespace boost::polygon::operators;
+  // Everything goes into one set and is merged by a single scan at get(): a union per shape
+  // would rescan the growing set each time (minutes on a layer of 100K shapes).
   bp::polygon_set_data<int> set;
   for (const Polygon& p : in) {
-    // Holes are subtracted from their own outer ring before the union with other shapes.
-    bp::polygon_set_data<int> one;
-    one.insert(to_boost(p.outer));
-    for (const Ring& h : p.holes) {
-      bp::polygon_set_data<int> hole;
-      hole.insert(to_boost(h));
-      one -= hole;
-    }
-    set += one;
+    BPolygon b;
+    const BSimple outer = to_boost(p.outer);
+    b.set(outer.begin(), outer.end());
+    std::vector<BSimple> holes;
+    for (const Ring& h : p.holes) holes.push_back(to_boost(h));
+    b.set_holes(holes.begin(), holes.end());
+    set.insert(b);
   }
   std::vector<BPolygon> merged;
   set.get(merged);
