@@ -36,7 +36,7 @@ with tempfile.TemporaryDirectory() as tmp:
 t_write = time.perf_counter() - t0
 whole = t_read + d.seconds["total"] + t_write
 
-# CGAL in its own process with a deadline: it hangs on some real layouts. Original segment
+# CGAL in its own process with a deadline: it can hang or crash (foundation issue). Original segment
 # order first (seed 0), then shuffled orders.
 deadline = float(g.get("deadline") or 1800)
 t_cgal = None
