@@ -63,10 +63,11 @@ py::dict to_python(const Result& r) {
   return out;
 }
 
-DiagramOptions options(bool check, int pairs) {
+DiagramOptions options(bool check, int pairs, int threads) {
   DiagramOptions o;
   o.check = check;
   o.checker.crossing_pairs = pairs;
+  o.build.threads = threads;
   return o;
 }
 
@@ -88,14 +89,15 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "voronoi_polygons",
-      [](const PyPolygons& polys, bool check, int pairs) {
+      [](const PyPolygons& polys, bool check, int pairs, int threads) {
         const std::vector<Polygon> in = polygons_of(polys);
-        return guarded([&] { return voronoi_of_polygons(in, options(check, pairs)); });
+        return guarded([&] { return voronoi_of_polygons(in, options(check, pairs, threads)); });
       },
-      py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000,
+      py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       "Diagram of polygons [(outer, [holes])], rings as [(x, y)] in integer DBU. Shapes are merged first.\n"
       "Returns {'pieces': [(kind, x1, y1, x2, y2, d1, d2, a_x1, a_y1, a_x2, a_y2, b_x1, b_y1, b_x2, b_y2,\n"
       "site_a, site_b)], 'check': {...}, 'sites': n, 'clip': box, 'seconds': {...}}.\n"
+      "threads: worker threads of the builder, 0 for one per core.\n"
       "Raises DiagramError if the independent checker rejects the diagram.");
 
   m.def(
@@ -111,13 +113,15 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "voronoi_sites",
-      [](const std::vector<XY>& points, const std::vector<std::pair<XY, XY>>& segments, bool check, int pairs) {
+      [](const std::vector<XY>& points, const std::vector<std::pair<XY, XY>>& segments, bool check, int pairs,
+         int threads) {
         std::vector<Point> p;
         for (auto& q : points) p.push_back({q.first, q.second});
         std::vector<Segment> s;
         for (auto& g : segments) s.push_back({{g.first.first, g.first.second}, {g.second.first, g.second.second}});
-        return guarded([&] { return voronoi_of_sites(p, s, options(check, pairs)); });
+        return guarded([&] { return voronoi_of_sites(p, s, options(check, pairs, threads)); });
       },
       py::arg("points"), py::arg("segments"), py::arg("check") = true, py::arg("check_pairs") = 2000,
+      py::arg("threads") = 0,
       "Diagram of plain sites: points [(x, y)] and non-crossing segments [((x1, y1), (x2, y2))]. Same output.");
 }

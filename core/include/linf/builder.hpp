@@ -1,9 +1,12 @@
-// The diagram builder: adaptive subdivision of the clip box, exact local envelopes.
+// The diagram builder: adaptive subdivision of the clip box, local lower envelopes.
 //
 // A box keeps the sites that can be nearest somewhere in it (lower bound of the distance over
-// the box <= the least upper bound among all sites). When few remain, the box is cut into
-// convex cells where every remaining distance function is affine; there the regions are
-// half-plane intersections and their shared edges are the Voronoi pieces.
+// the box <= the least upper bound among all sites; inside a group sharing one affine L-inf
+// function over the box, the same test in L1). When few remain, the box is cut into convex
+// cells where every remaining distance function is affine; there the regions are half-plane
+// intersections and their edges, split where the owner across changes, are the Voronoi
+// pieces. Arithmetic is double with explicit rounding allowances; the checker (checker.hpp)
+// is what vouches for the result. The top-level boxes are shared out to worker threads.
 //
 // Ownership rule (the 1-dimensionalisation of two-dimensional L-inf bisectors): a point belongs
 // to the site with the least L-inf distance; ties go to the least L1 distance, then to a point
@@ -20,9 +23,9 @@
 namespace linf {
 
 struct BuildOptions {
-  int local_sites = 16;       // solve a box directly once at most this many sites remain,
-  int affine_sites = 64;     // or at most this many of which
-  int bent_sites = 8;         // at most this many are not affine over the box
+  int local_sites = 12;       // solve a box directly once at most this many sites remain,
+  int affine_sites = 48;     // or at most this many of which
+  int bent_sites = 6;         // at most this many are not affine over the box
   double min_box = 1.0 / 64;  // never cut a box below this side (DBU)
   int threads = 0;            // workers; 0: one per hardware thread
 };
