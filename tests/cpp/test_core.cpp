@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+
+#include "linf/builder.hpp"
 #include "linf/classify.hpp"
 #include "linf/diagram.hpp"
 #include "linf/distance.hpp"
@@ -113,4 +117,27 @@ TEST(Diagram, RaysClippedToEnlargedBox) {
     }
   }
   EXPECT_TRUE(reaches);
+}
+
+TEST(Builder, SameDiagramWithOneOrTwoWorkers) {
+  // The top-level boxes are shared out to workers; the result must not depend on how.
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    Sites s = sites_of_polygons(merge_polygons(linf::testing::random_layout(seed, linf::testing::Style::Octilinear, 12)));
+    BuildOptions one, two;
+    one.threads = 1, two.threads = 2;
+    auto key = [](std::vector<Piece> v) {
+      std::vector<std::array<double, 6>> k;
+      for (const Piece& p : v) {
+        const bool flip = std::make_pair(p.q.x, p.q.y) < std::make_pair(p.p.x, p.p.y);
+        const Vec2 a = flip ? p.q : p.p, b = flip ? p.p : p.q;
+        k.push_back({double(p.a), double(p.b), a.x, a.y, b.x, b.y});
+      }
+      std::sort(k.begin(), k.end());
+      return k;
+    };
+    const auto k1 = key(build_pieces(s, clip_box(s), one)), k2 = key(build_pieces(s, clip_box(s), two));
+    ASSERT_EQ(k1.size(), k2.size()) << "seed " << seed;
+    for (std::size_t i = 0; i < k1.size(); ++i)
+      for (int j = 0; j < 6; ++j) ASSERT_NEAR(k1[i][j], k2[i][j], 1e-6) << "seed " << seed;
+  }
 }
