@@ -453,7 +453,10 @@ class Builder {
 
 // Joins pieces of the same two owners that continue each other in a straight line.
 std::vector<Piece> join_pieces(std::vector<Piece> in) {
-  std::sort(in.begin(), in.end(), [](const Piece& x, const Piece& y) { return x.a != y.a ? x.a < y.a : x.b < y.b; });
+  // A total order: workers deliver raw pieces in any order, the result must not depend on it.
+  std::sort(in.begin(), in.end(), [](const Piece& x, const Piece& y) {
+    return std::tie(x.a, x.b, x.p.x, x.p.y, x.q.x, x.q.y) < std::tie(y.a, y.b, y.p.x, y.p.y, y.q.x, y.q.y);
+  });
   std::vector<Piece> out;
   out.reserve(in.size());
   auto close = [](const Vec2& p, const Vec2& q) {

@@ -74,11 +74,11 @@ def cmd_voronoi(args):
     res.dbu = ly.dbu
     top = res.create_cell(cell.name)
     top.shapes(res.insert_layer(pya.LayerInfo(layer, datatype))).insert(layer_io.region_of(cell, index))
-    output.add_layers(res, top, diagram, layer, datatype)
+    drawn = output.add_layers(res, top, diagram, layer, datatype)
     res.write(os.path.join(d, "voronoi.oas"))
     t_write = time.perf_counter() - t0
     s = output.summary(diagram, ly.dbu, input=os.path.abspath(args["input"]), cell=cell.name,
-                       layer="%d/%d" % (layer, datatype), polygons=len(polygons))
+                       layer="%d/%d" % (layer, datatype), polygons=len(polygons), drawn=drawn)
     s["seconds"].update(read=t_read, write=t_write)
     output.write_json(s, os.path.join(d, "summary.json"))
     c = s["counts"]

@@ -28,7 +28,8 @@ def write_csv(diagram, path, dbu):
 
 def add_layers(layout, cell, diagram, layer, datatype):
     """Draws every piece as a zero-width path on its kind's layer (cleared first, so the
-    action can be repeated). Returns {kind: layer index}."""
+    action can be repeated). A piece shorter than the database grid rounds to a point and is
+    not drawn (the CSV keeps it). Returns {kind: number of pieces drawn}."""
     out = {}
     for kind in KINDS:
         info = diagram_layer_info(layer, datatype, kind)
@@ -37,10 +38,14 @@ def add_layers(layout, cell, diagram, layer, datatype):
             index = layout.insert_layer(info)
         cell.shapes(index).clear()
         out[kind] = index
+    drawn = dict.fromkeys(KINDS, 0)
     for p in diagram.pieces:
-        path = pya.Path([pya.Point(round(p.x1), round(p.y1)), pya.Point(round(p.x2), round(p.y2))], 0)
-        cell.shapes(out[p.kind]).insert(path)
-    return out
+        a, b = pya.Point(round(p.x1), round(p.y1)), pya.Point(round(p.x2), round(p.y2))
+        if a == b:
+            continue
+        cell.shapes(out[p.kind]).insert(pya.Path([a, b], 0))
+        drawn[p.kind] += 1
+    return drawn
 
 
 def summary(diagram, dbu, **extra):
