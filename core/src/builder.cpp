@@ -1,11 +1,11 @@
 #include "linf/builder.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <map>
-#include <thread>
+#include <array>
 #include <atomic>
+#include <cmath>
 #include <functional>
+#include <thread>
 #include <tuple>
 
 #include "affine.hpp"
@@ -19,6 +19,17 @@ using detail::DistFn;
 namespace {
 
 Affine minus(const Affine& p, const Affine& q) { return {p.a - q.a, p.b - q.b, p.c - q.c}; }
+
+// The largest value of a convex function over a box is at a corner.
+double max_over(const DistFn& f, const Box& b) {
+  return std::max({f.at(b.x1, b.y1), f.at(b.x2, b.y1), f.at(b.x2, b.y2), f.at(b.x1, b.y2)});
+}
+
+// The four quarters of a box, the subdivision step.
+std::array<Box, 4> quarters(const Box& b) {
+  const double mx = 0.5 * (b.x1 + b.x2), my = 0.5 * (b.y1 + b.y2);
+  return {Box{b.x1, b.y1, mx, my}, Box{mx, b.y1, b.x2, my}, Box{b.x1, my, mx, b.y2}, Box{mx, my, b.x2, b.y2}};
+}
 
 // L-inf distance between a closed box and a site: zero if they meet, else attained at a vertex
 // of one of them (both are convex polygons and the unit ball is a polygon).
@@ -97,10 +108,7 @@ class Builder {
   // The sites that can own a point of b, from a superset `cand`.
   std::vector<int> candidates(const Box& b, const std::vector<int>& cand) const {
     double U = INFINITY;
-    for (int t : cand) {
-      const DistFn& f = f_[t];
-      U = std::min(U, std::max({f.at(b.x1, b.y1), f.at(b.x2, b.y1), f.at(b.x2, b.y2), f.at(b.x1, b.y2)}));
-    }
+    for (int t : cand) U = std::min(U, max_over(f_[t], b));
     std::vector<int> keep;
     keep.reserve(cand.size());
     for (int t : cand)
@@ -121,11 +129,7 @@ class Builder {
       solve(b, keep);
       return;
     }
-    const double mx = 0.5 * (b.x1 + b.x2), my = 0.5 * (b.y1 + b.y2);
-    process({b.x1, b.y1, mx, my}, keep);
-    process({mx, b.y1, b.x2, my}, keep);
-    process({b.x1, my, mx, b.y2}, keep);
-    process({mx, my, b.x2, b.y2}, keep);
+    for (const Box& q : quarters(b)) process(q, keep);
   }
 
   BuildStats stats;
@@ -155,10 +159,7 @@ class Builder {
       while (g1 < flat.size() && flat[g1].a == flat[g0].a && flat[g1].b == flat[g0].b && flat[g1].c == flat[g0].c) ++g1;
       if (g1 - g0 == 1) { rest.push_back(flat[g0].t); g0 = g1; continue; }
       double U = INFINITY;
-      for (std::size_t i = g0; i < g1; ++i) {
-        const DistFn& g = g_[flat[i].t];
-        U = std::min(U, std::max({g.at(b.x1, b.y1), g.at(b.x2, b.y1), g.at(b.x2, b.y2), g.at(b.x1, b.y2)}));
-      }
+      for (std::size_t i = g0; i < g1; ++i) U = std::min(U, max_over(g_[flat[i].t], b));
       // Members with identical L1 pieces are all kept: they may part just outside the box,
       // and the owner beyond a box side must be among the candidates.
       for (std::size_t i = g0; i < g1; ++i)
@@ -179,11 +180,7 @@ class Builder {
   // How many sites' distance functions are not affine over the box (argmax differs at corners).
   int bent(const Box& b, const std::vector<int>& C) const {
     int n = 0;
-    for (int t : C) {
-      const DistFn& f = f_[t];
-      const int j = f.argmax(b.x1, b.y1);
-      if (f.argmax(b.x2, b.y1) != j || f.argmax(b.x2, b.y2) != j || f.argmax(b.x1, b.y2) != j) ++n;
-    }
+    for (int t : C) n += affine_piece(f_[t], b) < 0;
     return n;
   }
 
@@ -509,9 +506,7 @@ std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const Build
     for (int level = 0; level < 3; ++level) {
       next.clear();
       for (auto& [b, cand] : tasks) {
-        const double mx = 0.5 * (b.x1 + b.x2), my = 0.5 * (b.y1 + b.y2);
-        for (const Box& q : {Box{b.x1, b.y1, mx, my}, Box{mx, b.y1, b.x2, my}, Box{b.x1, my, mx, b.y2},
-                             Box{mx, my, b.x2, b.y2}}) {
+        for (const Box& q : quarters(b)) {
           std::vector<int> keep = top.candidates(q, cand);
           if (keep.size() > 1) next.emplace_back(q, std::move(keep));
         }

@@ -62,7 +62,8 @@ def cmd_voronoi(args):
     ly, cell, index, (layer, datatype) = load(args)
     d = out_dir(args)
     t0 = time.perf_counter()
-    polygons = layer_io.polygons_of(layer_io.region_of(cell, index))
+    region = layer_io.region_of(cell, index)
+    polygons = layer_io.polygons_of(region)
     t_read = time.perf_counter() - t0
     if not polygons:
         raise UsageError("layer %d/%d is empty in cell %s" % (layer, datatype, cell.name))
@@ -73,7 +74,7 @@ def cmd_voronoi(args):
     res = pya.Layout()
     res.dbu = ly.dbu
     top = res.create_cell(cell.name)
-    top.shapes(res.insert_layer(pya.LayerInfo(layer, datatype))).insert(layer_io.region_of(cell, index))
+    top.shapes(res.insert_layer(pya.LayerInfo(layer, datatype))).insert(region)
     drawn = output.add_layers(res, top, diagram, layer, datatype)
     res.write(os.path.join(d, "voronoi.oas"))
     t_write = time.perf_counter() - t0

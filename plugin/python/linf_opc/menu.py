@@ -57,16 +57,16 @@ def voronoi_of_current_layer():
                                     pya.MessageBox.Ok)
             return
         progress.inc()
-        if ly.is_editable():  # shapes and layer list in one undo step
+        # Shapes and layer list in one undo step; viewer mode keeps no undo history for shapes.
+        undoable = ly.is_editable()
+        if undoable:
             view.transaction("L\u221e Voronoi diagram of %s" % info.to_s())
-            try:
-                output.add_layers(ly, cell, diagram, info.layer, info.datatype)
-                view.add_missing_layers()
-            finally:
-                view.commit()
-        else:  # viewer mode keeps no undo history for shapes
+        try:
             output.add_layers(ly, cell, diagram, info.layer, info.datatype)
             view.add_missing_layers()
+        finally:
+            if undoable:
+                view.commit()
         progress.inc()
         c = diagram.counts()
         mw.message("L\u221e Voronoi: %d pieces (internal %d, external %d, notch %d, adjacent %d), checked, %.2f s"
