@@ -1,5 +1,5 @@
 # Batch entry point of the L-inf Voronoi OPC flow (see README, "Batch"):
-#   klayout -b -r macros/linf_opc.py -rd cmd=voronoi -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd out=DIR
+#   klayout -b -r macros/linf_opc.py -rd cmd=voronoi|gauges -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd out=DIR
 # Run from a checkout it uses the checkout's sources and build; otherwise the installed package.
 import os
 import sys
@@ -11,5 +11,5 @@ if os.path.isdir(os.path.join(_repo, "plugin", "python", "linf_opc")):
 
 from linf_opc import batch  # noqa: E402
 
-_args = {k: globals().get(k) for k in ("cmd", "input", "layer", "cell", "out")}
+_args = {k: globals().get(k) for k in ("cmd", "input", "layer", "cell", "out", "window")}
 sys.exit(batch.main(_args))

@@ -1,9 +1,12 @@
 // Thin binding: plain Python data in, plain Python data out. No logic lives here.
 #include <pybind11/pybind11.h>
+
+#include <chrono>
 #include <pybind11/stl.h>
 
 #include "linf/diagram.hpp"
 #include "linf/engine.hpp"
+#include "linf/gauge.hpp"
 #include "linf/sites.hpp"
 
 namespace py = pybind11;
@@ -33,16 +36,8 @@ std::vector<Polygon> polygons_of(const PyPolygons& polys) {
   return in;
 }
 
-py::dict to_python(const Result& r) {
+py::dict to_python_summary(const Result& r) {
   const Diagram& d = r.diagram;
-  const auto& S = d.sites.sites;
-  py::list pieces;
-  for (const Piece& p : d.pieces) {
-    const Site& a = S[p.a];
-    const Site& b = S[p.b];
-    pieces.append(py::make_tuple(kind_name(p.kind), p.p.x, p.p.y, p.q.x, p.q.y, p.d1, p.d2, a.a.x, a.a.y, a.b.x,
-                                 a.b.y, b.a.x, b.a.y, b.b.x, b.b.y, p.a, p.b));
-  }
   py::dict check;
   check["ok"] = r.check.ok();
   check["sampled_points"] = r.check.sampled_points;
@@ -51,9 +46,8 @@ py::dict to_python(const Result& r) {
   check["worst_error"] = r.check.worst_error;
   check["messages"] = r.check.messages;
   py::dict out;
-  out["pieces"] = pieces;
   out["check"] = check;
-  out["sites"] = S.size();
+  out["sites"] = d.sites.sites.size();
   out["clip"] = py::make_tuple(d.clip.x1, d.clip.y1, d.clip.x2, d.clip.y2);
   py::dict t;
   t["merge"] = d.seconds_merge;
@@ -61,6 +55,46 @@ py::dict to_python(const Result& r) {
   t["check"] = d.seconds_check;
   out["seconds"] = t;
   return out;
+}
+
+py::dict to_python(const Result& r) {
+  const auto& S = r.diagram.sites.sites;
+  py::list pieces;
+  for (const Piece& p : r.diagram.pieces) {
+    const Site& a = S[p.a];
+    const Site& b = S[p.b];
+    pieces.append(py::make_tuple(kind_name(p.kind), p.p.x, p.p.y, p.q.x, p.q.y, p.d1, p.d2, a.a.x, a.a.y, a.b.x,
+                                 a.b.y, b.a.x, b.a.y, b.b.x, b.b.y, p.a, p.b));
+  }
+  py::dict out = to_python_summary(r);
+  out["pieces"] = pieces;
+  return out;
+}
+
+py::tuple site_tuple(const Site& s) { return py::make_tuple(s.a.x, s.a.y, s.b.x, s.b.y); }
+
+py::dict gauges_to_python(const Result& r, const Gauges& g, double seconds_gauges) {
+  const auto& S = r.diagram.sites.sites;
+  py::list out;
+  for (const Gauge& x : g.gauges)
+    out.append(py::make_tuple(gauge_type_name(x.type), x.p.x, x.p.y, x.q.x, x.q.y, x.at.x, x.at.y, x.cd, x.score,
+                              x.norm_score, x.tiebreak, x.rank, x.teeth, site_tuple(S[x.a]), site_tuple(S[x.b]),
+                              x.a, x.b));
+  py::dict counts;
+  for (const char* k : {"internal", "external", "notch", "adjacent"}) counts[k] = 0;
+  for (const Piece& p : r.diagram.pieces) {
+    const char* k = kind_name(p.kind);
+    counts[k] = counts[k].cast<long>() + 1;
+  }
+  py::dict d = to_python_summary(r);
+  d["counts"] = counts;
+  d["pieces"] = r.diagram.pieces.size();
+  d["seconds"].cast<py::dict>()["gauges"] = seconds_gauges;
+  py::dict res;
+  res["gauges"] = out;
+  res["stretches"] = g.stretches.size();
+  res["diagram"] = d;
+  return res;
 }
 
 DiagramOptions options(bool check, int pairs, int threads) {
@@ -99,6 +133,31 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "site_a, site_b)], 'check': {...}, 'sites': n, 'clip': box, 'seconds': {...}}.\n"
       "threads: worker threads of the builder, 0 for one per core.\n"
       "Raises DiagramError if the independent checker rejects the diagram.");
+
+  m.def(
+      "gauges_polygons",
+      [](const PyPolygons& polys, bool check, int pairs, int threads, double tooth_fraction) {
+        const std::vector<Polygon> in = polygons_of(polys);
+        Result r;
+        Gauges g;
+        double seconds = 0;
+        {
+          py::gil_scoped_release unlocked;
+          r = voronoi_of_polygons(in, options(check, pairs, threads));
+          const auto t0 = std::chrono::steady_clock::now();
+          GaugeOptions o;
+          o.tooth_fraction = tooth_fraction;
+          g = gauges_of(r.diagram, o);
+          seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        }
+        return gauges_to_python(r, g, seconds);
+      },
+      py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
+      py::arg("tooth_fraction") = 0.5,
+      "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
+      "Returns {'gauges': [(type, x1, y1, x2, y2, cx, cy, cd, score, norm_score, tiebreak, rank, teeth,\n"
+      "(a_x1, a_y1, a_x2, a_y2), (b_x1, b_y1, b_x2, b_y2), site_a, site_b)] in rank order, 'stretches': n,\n"
+      "'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}. DBU throughout.");
 
   m.def(
       "cgal_construction_seconds",

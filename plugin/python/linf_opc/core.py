@@ -6,5 +6,6 @@ except ImportError:  # a checkout: the build directory is on sys.path
 
 voronoi_polygons = _core.voronoi_polygons
 voronoi_sites = _core.voronoi_sites
+gauges_polygons = _core.gauges_polygons
 cgal_construction_seconds = _core.cgal_construction_seconds
 DiagramError = _core.DiagramError

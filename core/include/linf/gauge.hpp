@@ -1,0 +1,48 @@
+// Gauges: where a CD-SEM measurement should be taken, scored and ranked (thesis 5.1).
+//
+//   in:  a Diagram
+//   out: every gauge candidate of the layer, ranked: rank 1 is the most likely pinch or bridge.
+//
+// The rules where the thesis leaves a choice open are in the README ("Gauges").
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "linf/piece.hpp"
+#include "linf/stretch.hpp"
+
+namespace linf {
+
+enum class GaugeType : std::uint8_t { Internal, External, Sandwich, Comb, T };
+
+const char* gauge_type_name(GaugeType t);
+
+struct Gauge {
+  GaugeType type = GaugeType::Internal;
+  Vec2 at;               // the gauge point, on the diagram
+  Vec2 p, q;             // the measurement line: points of the two measured features nearest to `at`
+  double cd = 0;         // the critical dimension measured: twice the L-inf clearance at `at`
+  double score = 0;      // lower = more critical
+  double norm_score = 0; // score / the highest score among the gauges returned
+  double tiebreak = 0;   // extension (internal, external) or overlap (sandwich, comb, T)
+  std::int32_t rank = 0; // 1 = most critical
+  std::int32_t a = -1, b = -1;     // the two measured sites
+  std::int32_t stretch = -1;       // the stretch the gauge sits on
+  std::int32_t neighbour = -1;     // sandwich/comb/T: the critical neighbour's external stretch
+  std::int32_t teeth = 0;          // comb/T: teeth on the critical side
+};
+
+struct GaugeOptions {
+  // A neighbour is a tooth when the feature it shows the base (a line end, a narrow side, a
+  // corner) is at most this fraction of the base's edge long: it meets part of the base only.
+  double tooth_fraction = 0.5;
+};
+
+struct Gauges {
+  std::vector<Stretch> stretches;
+  std::vector<Gauge> gauges;  // ranked
+};
+
+Gauges gauges_of(const Diagram& d, const GaugeOptions& opt = {});
+
+}  // namespace linf

@@ -1,0 +1,56 @@
+"""The gauge stage (thesis 5.1).
+
+in:  polygons [(outer, [holes])] in integer DBU
+out: Gauges: every gauge candidate of the layer, ranked (rank 1 = most likely to pinch or
+     bridge), with the diagram's summary and timings. The diagram is built and checked first.
+The rules where the thesis leaves a choice open are in the README, "Gauges".
+"""
+import time
+from collections import namedtuple
+
+from . import core
+
+TYPES = ("internal", "external", "sandwich", "comb", "T")
+
+Gauge = namedtuple("Gauge", "type x1 y1 x2 y2 cx cy cd score norm_score tiebreak rank teeth "
+                            "site_a_geom site_b_geom site_a site_b")
+
+
+class Gauges:
+    def __init__(self, raw, seconds_total):
+        self.gauges = [Gauge(*g) for g in raw["gauges"]]
+        self.stretches = raw["stretches"]
+        self.diagram = raw["diagram"]
+        self.seconds = dict(self.diagram["seconds"], total=seconds_total)
+
+    def counts(self):
+        c = dict.fromkeys(TYPES, 0)
+        for g in self.gauges:
+            c[g.type] += 1
+        return c
+
+    def score_ranges(self):
+        """{type: (lowest score, highest score)} in DBU, types that have gauges only."""
+        r = {}
+        for g in self.gauges:
+            lo, hi = r.get(g.type, (g.score, g.score))
+            r[g.type] = (min(lo, g.score), max(hi, g.score))
+        return r
+
+
+def compute(polygons, check=True, tooth_fraction=0.5):
+    t0 = time.perf_counter()
+    raw = core.gauges_polygons(polygons, check, 2000, 0, tooth_fraction)
+    return Gauges(raw, time.perf_counter() - t0)
+
+
+def most_critical_in(gauges, window):
+    """Per-pattern mode: the most critical gauge of each type whose point lies in window
+    (x1, y1, x2, y2) in DBU, in rank order (at most five)."""
+    x1, y1, x2, y2 = window
+    seen, out = set(), []
+    for g in gauges:
+        if g.type not in seen and x1 <= g.cx <= x2 and y1 <= g.cy <= y2:
+            seen.add(g.type)
+            out.append(g)
+    return out
