@@ -76,10 +76,13 @@ py::tuple site_tuple(const Site& s) { return py::make_tuple(s.a.x, s.a.y, s.b.x,
 py::dict gauges_to_python(const Result& r, const Gauges& g, double seconds_gauges) {
   const auto& S = r.diagram.sites.sites;
   py::list out;
-  for (const Gauge& x : g.gauges)
+  for (const Gauge& x : g.gauges) {
+    py::list path;
+    for (const Vec2& v : g.stretches[x.stretch].path) path.append(py::make_tuple(v.x, v.y));
     out.append(py::make_tuple(gauge_type_name(x.type), x.p.x, x.p.y, x.q.x, x.q.y, x.at.x, x.at.y, x.cd, x.score,
                               x.norm_score, x.tiebreak, x.rank, x.teeth, site_tuple(S[x.a]), site_tuple(S[x.b]),
-                              x.a, x.b));
+                              x.a, x.b, path));
+  }
   py::dict counts;
   for (const char* k : {"internal", "external", "notch", "adjacent"}) counts[k] = 0;
   for (const Piece& p : r.diagram.pieces) {
@@ -156,7 +159,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       py::arg("tooth_fraction") = 0.5,
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
       "Returns {'gauges': [(type, x1, y1, x2, y2, cx, cy, cd, score, norm_score, tiebreak, rank, teeth,\n"
-      "(a_x1, a_y1, a_x2, a_y2), (b_x1, b_y1, b_x2, b_y2), site_a, site_b)] in rank order, 'stretches': n,\n"
+      "(a_x1, a_y1, a_x2, a_y2), (b_x1, b_y1, b_x2, b_y2), site_a, site_b, [stretch path (x, y)])] in rank order, 'stretches': n,\n"
       "'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}. DBU throughout.");
 
   m.def(

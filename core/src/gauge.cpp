@@ -194,30 +194,33 @@ bool measurable(const Sites& s, const Stretch& st) {
 
 double least(const Stretch& st) { return *std::min_element(st.clearance.begin(), st.clearance.end()); }
 
-// One gap, one gauge: in L-inf the gap between two edges continues past a corner into the
-// corner vertex's bisector at the same clearance. A stretch owned by a vertex is redundant
-// when a stretch owned by one of the vertex's edges (and the same or an edge of the other
-// owner) is at least as narrow.
+// One gap, one gauge. In L-inf the gap between two edges continues past a corner into the
+// corner vertex's bisector at the same clearance, and three sites meeting at a point give
+// point stretches too. A stretch is redundant when a related stretch (each owner replaced by
+// itself, its edges if a vertex, or its endpoints if an edge) that is preferred is at least as
+// narrow. Preferred: a chain over a point stretch, then fewer vertex owners.
 std::vector<bool> redundant(const Sites& s, const std::vector<Stretch>& all, const std::vector<bool>& ok) {
-  std::map<std::pair<std::int32_t, std::int32_t>, double> narrowest;
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    if (!ok[i]) continue;
-    auto& v = narrowest.try_emplace({all[i].a, all[i].b}, kNone).first->second;
-    v = std::min(v, least(all[i]));
-  }
+  auto vertices = [&](const Stretch& st) { return int(s.sites[st.a].is_point()) + int(s.sites[st.b].is_point()); };
+  auto rank = [&](const Stretch& st) { return (st.path.size() == 1 ? 4 : 0) + vertices(st); };
+  std::map<std::pair<std::int32_t, std::int32_t>, std::vector<std::size_t>> by_pair;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (ok[i]) by_pair[{all[i].a, all[i].b}].push_back(i);
+  auto related = [&](std::int32_t x) {
+    const Site& t = s.sites[x];
+    return std::vector<std::int32_t>{x, t.end0, t.end1};
+  };
   std::vector<bool> out(all.size(), false);
   for (std::size_t i = 0; i < all.size(); ++i) {
     const Stretch& st = all[i];
-    if (!ok[i] || (!s.sites[st.a].is_point() && !s.sites[st.b].is_point())) continue;
-    std::vector<std::int32_t> as = edges_of(s, st.a), bs = edges_of(s, st.b);
-    as.push_back(st.a);
-    bs.push_back(st.b);
+    if (!ok[i] || rank(st) == 0) continue;
     const double c = least(st);
-    for (std::int32_t x : as)
-      for (std::int32_t y : bs) {
-        if (x == st.a && y == st.b) continue;
-        auto it = narrowest.find({std::min(x, y), std::max(x, y)});
-        if (it != narrowest.end() && it->second <= c + kTol) out[i] = true;
+    for (std::int32_t x : related(st.a))
+      for (std::int32_t y : related(st.b)) {
+        if (x < 0 || y < 0) continue;
+        auto it = by_pair.find({std::min(x, y), std::max(x, y)});
+        if (it == by_pair.end()) continue;
+        for (std::size_t j : it->second)
+          if (rank(all[j]) < rank(st) && least(all[j]) <= c + kTol) out[i] = true;
       }
   }
   return out;

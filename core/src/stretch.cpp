@@ -1,5 +1,7 @@
 #include "linf/stretch.hpp"
 
+#include "linf/distance.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -20,6 +22,33 @@ struct KeyHash {
 };
 
 double dist(const Vec2& a, const Vec2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+// A piece's clearance is convex along it but not always linear: between two points on a
+// diagonal the L-inf bisector dips from both ends to the middle. Convexity means the midpoint
+// test finds every such dip; the dip's bottom is found by ternary search and becomes a path
+// point, so that the path's linear profile holds the true minimum.
+void refine(const Site& owner, const Vec2& u, const Vec2& v, double du, double dv, int depth,
+            std::vector<Vec2>& path, std::vector<double>& clearance) {
+  auto at = [&](double t) { return Vec2{u.x + t * (v.x - u.x), u.y + t * (v.y - u.y)}; };
+  auto f = [&](double t) {
+    const Vec2 p = at(t);
+    return dist_site(p.x, p.y, owner);
+  };
+  const double tol = 1e-7 * (1.0 + std::max(du, dv));
+  if (depth > 0 && f(0.5) < 0.5 * (du + dv) - tol) {
+    double lo = 0, hi = 1;
+    for (int i = 0; i < 100 && hi - lo > 1e-12; ++i) {
+      const double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
+      (f(a) <= f(b) ? hi : lo) = (f(a) <= f(b) ? b : a);
+    }
+    const double t = 0.5 * (lo + hi), dt = f(t);
+    refine(owner, u, at(t), du, dt, depth - 1, path, clearance);
+    refine(owner, at(t), v, dt, dv, depth - 1, path, clearance);
+    return;
+  }
+  path.push_back(v);
+  clearance.push_back(dv);
+}
 
 // Orders one owner pair's pieces into paths: start at an end of odd degree, walk while a
 // continuation exists, repeat until every piece is used.
@@ -80,8 +109,7 @@ void chain(const Diagram& d, const std::vector<std::int32_t>& ids, std::vector<S
         s.clearance.push_back(du);
       }
       s.length += dist(u, v);
-      s.path.push_back(v);
-      s.clearance.push_back(dv);
+      refine(d.sites.sites[p.a], u, v, du, dv, 3, s.path, s.clearance);
       from = key_of(v);
       cur = -1;
       for (std::int32_t j : at[from])

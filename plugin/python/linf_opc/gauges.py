@@ -13,7 +13,7 @@ from . import core
 TYPES = ("internal", "external", "sandwich", "comb", "T")
 
 Gauge = namedtuple("Gauge", "type x1 y1 x2 y2 cx cy cd score norm_score tiebreak rank teeth "
-                            "site_a_geom site_b_geom site_a site_b")
+                            "site_a_geom site_b_geom site_a site_b stretch")
 
 
 class Gauges:
