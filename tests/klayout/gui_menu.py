@@ -142,6 +142,51 @@ def second_step():
             state["action"].trigger()
             n = cell.shapes(ly.find_layer(L, 203)).size()
             expect(n == state["counts"]["adjacent"], "a second run replaces the diagram (%d adjacent)" % n)
+        later(500, gauges_step)
+        return
+    except Exception as e:
+        expect(False, "exception: %s" % e)
+    finish()
+
+
+def gauges_step():
+    """Suggest gauges: the gauge layer with lines and rank texts, a report database with one
+    category per gauge type shown in the marker browser; editor mode: one undo removes them."""
+    try:
+        view, ly, cell = state["view"], state["ly"], state["cell"]
+        select(view, ly)
+        action = mw.menu().action("tools_menu.linf_opc.gauges")
+        expect(mw.menu().is_valid("tools_menu.linf_opc.gauges"), "gauges menu entry registered")
+        rdbs = view.num_rdbs()
+        action.trigger()
+        li = ly.find_layer(L, 210)
+        n = cell.shapes(li).size() if li is not None else 0
+        expect(n > 0 and n % 2 == 0, "gauge layer filled: %d shapes (a line and a text per gauge)" % n)
+        expect(view.num_rdbs() == rdbs + 1, "a report database was added to the view")
+        rdb = view.rdb(view.num_rdbs() - 1)
+        cats = {c.name(): c.num_items() for c in rdb.each_category()}
+        say("marker browser categories: %s" % cats)
+        expect(set(cats) == {"internal", "external", "sandwich", "comb", "T"} and sum(cats.values()) == n // 2,
+               "one category per gauge type, one item per gauge")
+        view.zoom_box(cell.dbbox_per_layer(ly.find_layer(L, D)))
+        later(1000, gauges_shot)
+        return
+    except Exception as e:
+        expect(False, "exception: %s" % e)
+    finish()
+
+
+def gauges_shot():
+    try:
+        view, ly, cell = state["view"], state["ly"], state["cell"]
+        base, ext = os.path.splitext(g["shot"])
+        shot = base + "_gauges" + ext
+        view.save_image(shot, 1200, 800)
+        expect(os.path.getsize(shot) > 12000, "screenshot %s (%d bytes)" % (shot, os.path.getsize(shot)))
+        if ly.is_editable():
+            mw.cm_undo()
+            li = ly.find_layer(L, 210)
+            expect(li is None or cell.shapes(li).size() == 0, "undo removes the gauges")
     except Exception as e:
         expect(False, "exception: %s" % e)
     finish()

@@ -52,10 +52,12 @@ def add_layer(layout, cell, gauges, layer, datatype):
     return index
 
 
-def report(gauges, dbu, cell_name, source=""):
-    """A report database with one category per gauge type; each item holds the measurement
-    line in micrometres and the named values score, norm_score, cd, tiebreak and rank."""
-    rdb = pya.ReportDatabase("gauges")
+def report(gauges, dbu, cell_name, source="", rdb=None):
+    """Fills a report database (a new one unless given, e.g. the view's own) with one
+    category per gauge type; each item holds the measurement line in micrometres and the
+    named values score, norm_score, cd, tiebreak and rank."""
+    if rdb is None:
+        rdb = pya.ReportDatabase("gauges")
     rdb.generator = "linf_opc gauges"
     rdb.original_file = source
     rdb.top_cell_name = cell_name

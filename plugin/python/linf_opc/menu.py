@@ -6,6 +6,8 @@ work itself is the same stage functions the batch macro calls.
 import pya
 
 from . import diagram as diagram_stage
+from . import gauge_output
+from . import gauges as gauge_stage
 from . import layout as layer_io
 from . import output
 
@@ -31,51 +33,98 @@ def current_layer(view):
     return cv, props.layer_index(), cv.layout().get_info(props.layer_index())
 
 
-def voronoi_of_current_layer():
+class _Stop(Exception):
+    """Raised after the person has been told why the action cannot go on."""
+
+
+def _layer_polygons(title):
+    """(main window, view, cellview, layer info, polygons) of the current layer, or _Stop
+    after a message: no layout, no layer selected, empty layer."""
     mw = pya.Application.instance().main_window()
     view = mw.current_view()
     if view is None:
         _warn("Open a layout first.")
-        return
+        raise _Stop()
     sel = current_layer(view)
     if sel is None:
         _warn("Select a drawing layer in the layer list first.")
-        return
+        raise _Stop()
     cv, index, info = sel
-    ly, cell = cv.layout(), cv.cell
-    progress = pya.RelativeProgress("L\u221e Voronoi diagram of %s" % info.to_s(), 3)
+    polygons = layer_io.polygons_of(layer_io.region_of(cv.cell, index))
+    if not polygons:
+        _warn("Layer %s has no shapes in cell %s." % (info.to_s(), cv.cell.name))
+        raise _Stop()
+    return mw, view, cv, info, polygons
+
+
+def _undoable(view, ly, title, draw):
+    """Runs draw() and adds the new layers to the layer list in one undo step; viewer mode
+    keeps no undo history for shapes."""
+    undoable = ly.is_editable()
+    if undoable:
+        view.transaction(title)
     try:
-        polygons = layer_io.polygons_of(layer_io.region_of(cell, index))
-        progress.inc()
-        if not polygons:
-            _warn("Layer %s has no shapes in cell %s." % (info.to_s(), cell.name))
-            return
-        try:
-            diagram = diagram_stage.compute(polygons)
-        except diagram_stage.core.DiagramError as e:
-            pya.MessageBox.critical(TITLE, "The diagram failed its independent check and was not drawn:\n%s" % e,
-                                    pya.MessageBox.Ok)
-            return
-        progress.inc()
-        # Shapes and layer list in one undo step; viewer mode keeps no undo history for shapes.
-        undoable = ly.is_editable()
+        result = draw()
+        view.add_missing_layers()
+    finally:
         if undoable:
-            view.transaction("L\u221e Voronoi diagram of %s" % info.to_s())
-        try:
-            output.add_layers(ly, cell, diagram, info.layer, info.datatype)
-            view.add_missing_layers()
-        finally:
-            if undoable:
-                view.commit()
+            view.commit()
+    return result
+
+
+def _run(title, action):
+    """The editor survives anything the flow does: every failure becomes a message."""
+    progress = pya.RelativeProgress(title, 3)
+    try:
+        action(progress)
+    except _Stop:
+        pass
+    except diagram_stage.core.DiagramError as e:
+        pya.MessageBox.critical(TITLE, "The diagram failed its independent check; nothing was drawn:\n%s" % e,
+                                pya.MessageBox.Ok)
+    except Exception as e:
+        pya.MessageBox.critical(TITLE, "%s failed: %s" % (title, e), pya.MessageBox.Ok)
+    finally:
+        progress._destroy()
+
+
+def voronoi_of_current_layer():
+    def action(progress):
+        mw, view, cv, info, polygons = _layer_polygons("L\u221e Voronoi diagram")
+        progress.inc()
+        diagram = diagram_stage.compute(polygons)
+        progress.inc()
+        ly = cv.layout()
+        _undoable(view, ly, "L\u221e Voronoi diagram of %s" % info.to_s(),
+                  lambda: output.add_layers(ly, cv.cell, diagram, info.layer, info.datatype))
         progress.inc()
         c = diagram.counts()
         mw.message("L\u221e Voronoi: %d pieces (internal %d, external %d, notch %d, adjacent %d), checked, %.2f s"
                    % (len(diagram.pieces), c["internal"], c["external"], c["notch"], c["adjacent"],
                       diagram.seconds["total"]), 10000)
-    except Exception as e:  # the editor must survive anything the flow does
-        pya.MessageBox.critical(TITLE, "L\u221e Voronoi failed: %s" % e, pya.MessageBox.Ok)
-    finally:
-        progress._destroy()
+    _run("L\u221e Voronoi diagram", action)
+
+
+def gauges_of_current_layer():
+    def action(progress):
+        mw, view, cv, info, polygons = _layer_polygons("Gauges")
+        progress.inc()
+        result = gauge_stage.compute(polygons)
+        progress.inc()
+        ly = cv.layout()
+        _undoable(view, ly, "Gauges on %s" % info.to_s(),
+                  lambda: gauge_output.add_layer(ly, cv.cell, result.gauges, info.layer, info.datatype))
+        index = view.create_rdb("gauges %s" % info.to_s())
+        gauge_output.report(result.gauges, ly.dbu, cv.cell.name, cv.filename(), view.rdb(index))
+        view.show_rdb(index, view.active_cellview_index())
+        progress.inc()
+        c = result.counts()
+        best = result.gauges[0] if result.gauges else None
+        mw.message("Gauges: %d (internal %d, external %d, sandwich %d, comb %d, T %d)%s, %.2f s"
+                   % (len(result.gauges), c["internal"], c["external"], c["sandwich"], c["comb"], c["T"],
+                      "; most critical: %s %.4g um" % (best.type, best.cd * ly.dbu) if best else "",
+                      result.seconds["total"]), 10000)
+    _run("Gauges", action)
 
 
 def register():
@@ -87,4 +136,8 @@ def register():
     action.title = "Voronoi diagram of current layer"
     action.on_triggered(voronoi_of_current_layer)
     menu.insert_item(MENU + ".end", "voronoi", action)
-    register.actions = [action]  # keep the action alive
+    gauges = pya.Action()
+    gauges.title = "Suggest gauges on current layer"
+    gauges.on_triggered(gauges_of_current_layer)
+    menu.insert_item(MENU + ".end", "gauges", gauges)
+    register.actions = [action, gauges]  # keep the actions alive
