@@ -10,4 +10,6 @@ cmake --install build --prefix "$home/salt/linf_opc" > /dev/null
 echo "installed the KLayout package in $home/salt/linf_opc (menu: Tools > L-inf Voronoi OPC)"
 out="${1:-out/sample}"
 klayout -b -r macros/linf_opc.py -rd cmd=voronoi -rd input=samples/metal.oas -rd layer=1/0 -rd out="$out"
-echo "open the result with: klayout $out/voronoi.oas"
+klayout -b -r macros/linf_opc.py -rd cmd=gauges -rd input=samples/metal.oas -rd layer=1/0 -rd out="$out"
+echo "open the results with: klayout $out/voronoi.oas   or, with the gauges in the marker browser:"
+echo "  klayout $out/gauges.oas -m $out/gauges.lyrdb"

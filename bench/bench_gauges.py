@@ -1,0 +1,49 @@
+# Speed of the gauge stage (diagram included) against KLayout's own width plus space checks
+# (metrics Square) on the same layer, measured in the same run:
+#   klayout -b -r bench/bench_gauges.py [-rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd t=DBU]
+# Default input: ../shared/data/iccad16/testcase3.oas, 1000/0. The checks use the threshold t
+# (default: 2 x the narrowest width the gauges find), so that they report real work.
+import os
+import sys
+import time
+
+repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(repo, "build"))
+sys.path.insert(0, os.path.join(repo, "plugin", "python"))
+
+import pya  # noqa: E402
+
+from linf_opc import gauges, layout  # noqa: E402
+
+g = globals()
+path = g.get("input") or os.path.join(repo, "..", "shared", "data", "iccad16", "testcase3.oas")
+L, D = layout.parse_layer(g.get("layer") or "1000/0")
+ly = pya.Layout()
+ly.read(path)
+cell = ly.cell(g["cell"]) if g.get("cell") else ly.top_cells()[0]
+li = ly.find_layer(L, D)
+
+t0 = time.perf_counter()
+region = layout.region_of(cell, li)
+polygons = layout.polygons_of(region)
+t_read = time.perf_counter() - t0
+r = gauges.compute(polygons)
+t_gauges = t_read + r.seconds["total"]
+w0 = min(x.cd for x in r.gauges if x.type == "internal")
+t = int(g.get("t") or 2 * w0)
+
+# KLayout's checks on a fresh region from the layout, as a DRC deck would start.
+t0 = time.perf_counter()
+fresh = pya.Region(cell.begin_shapes_rec(li))
+width = fresh.width_check(t, False, pya.Region.Square)
+space = fresh.space_check(t, False, pya.Region.Square)
+n_drc = width.size() + space.size()
+t_drc = time.perf_counter() - t0
+
+s = r.seconds
+print("input: %s %d/%d cell %s: %d polygons, %d sites, %d gauges"
+      % (os.path.basename(path), L, D, cell.name, len(polygons), r.diagram["sites"], len(r.gauges)))
+print("gauges (diagram included): %.2f s (read %.2f, merge %.2f, build %.2f, check %.2f, gauges %.2f)"
+      % (t_gauges, t_read, s["merge"], s["build"], s["check"], s["gauges"]))
+print("KLayout width + space checks, t = %d DBU, Square: %.2f s (%d edge pairs)" % (t, t_drc, n_drc))
+print("ratio gauges / (width + space): %.2f (goal: under 1)" % (t_gauges / t_drc))

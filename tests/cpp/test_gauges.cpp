@@ -1,0 +1,149 @@
+// Gauges on drawn configurations, one per rule of the README's "Gauges" section.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "linf/diagram.hpp"
+#include "linf/gauge.hpp"
+#include "layouts.hpp"
+
+using namespace linf;
+using linf::testing::box;
+
+namespace {
+
+std::vector<Gauge> gauges(const std::vector<Polygon>& polys) {
+  return gauges_of(voronoi_of_polygons(polys).diagram).gauges;
+}
+
+std::vector<Gauge> of_type(const std::vector<Gauge>& all, GaugeType t) {
+  std::vector<Gauge> out;
+  for (const Gauge& g : all)
+    if (g.type == t) out.push_back(g);
+  return out;
+}
+
+double line_length(const Gauge& g) { return std::hypot(g.q.x - g.p.x, g.q.y - g.p.y); }
+
+}  // namespace
+
+TEST(Gauges, BarHasOneWidthAtItsCentre) {
+  const auto all = gauges({box(0, 0, 1000, 40)});
+  const auto in = of_type(all, GaugeType::Internal);
+  ASSERT_EQ(in.size(), 1u);
+  EXPECT_NEAR(in[0].cd, 40, 1e-9);
+  EXPECT_NEAR(in[0].score, 40, 1e-9);
+  EXPECT_NEAR(in[0].at.x, 500, 1e-6);
+  EXPECT_NEAR(in[0].at.y, 20, 1e-6);
+  EXPECT_NEAR(line_length(in[0]), 40, 1e-9);  // across the bar, ends on its two long edges
+  EXPECT_NEAR(in[0].tiebreak, 960, 1e-6);     // extension: the constant-width medial axis
+  EXPECT_TRUE(of_type(all, GaugeType::External).empty());
+}
+
+TEST(Gauges, SquareViaIsMeasuredBothWays) {
+  const auto in = of_type(gauges({box(0, 0, 30, 30)}), GaugeType::Internal);
+  ASSERT_EQ(in.size(), 2u);
+  for (const Gauge& g : in) {
+    EXPECT_NEAR(g.cd, 30, 1e-9);
+    EXPECT_NEAR(g.at.x, 15, 1e-6);
+    EXPECT_NEAR(g.at.y, 15, 1e-6);
+  }
+  EXPECT_NE(std::fabs(in[0].q.x - in[0].p.x) > 1, std::fabs(in[1].q.x - in[1].p.x) > 1);
+}
+
+TEST(Gauges, OneGapOneGauge) {
+  // Two bars side by side, offset: the gap continues past the corners at the same clearance,
+  // owned by the corner vertices; only the edge-to-edge gauge is reported.
+  const auto ex = of_type(gauges({box(0, 0, 1000, 40), box(300, 70, 1300, 110)}), GaugeType::External);
+  const auto narrow = std::count_if(ex.begin(), ex.end(), [](const Gauge& g) { return g.cd < 31; });
+  EXPECT_EQ(narrow, 1);
+  auto it = std::min_element(ex.begin(), ex.end(), [](auto& a, auto& b) { return a.cd < b.cd; });
+  EXPECT_NEAR(it->cd, 30, 1e-9);
+  EXPECT_NEAR(it->at.x, 650, 1e-6);  // the centre of the overlap
+}
+
+TEST(Gauges, KissingCornersOnADiagonal) {
+  // Corners exactly on a 45-degree diagonal: the L-inf bisector dips to half the offset in the
+  // middle of a piece whose ends are farther; the gauge finds the dip.
+  const auto ex = of_type(gauges({box(0, 0, 100, 100), box(190, 190, 300, 300)}), GaugeType::External);
+  ASSERT_FALSE(ex.empty());
+  EXPECT_NEAR(ex.front().cd, 90, 1e-6);
+  EXPECT_NEAR(ex.front().at.x, 145, 1e-6);
+  EXPECT_NEAR(ex.front().at.y, 145, 1e-6);
+}
+
+TEST(Gauges, JogIsMeasuredAcrossItsReflexCorners) {
+  Polygon jog{{{0, 0}, {80, 0}, {80, 400}, {120, 400}, {120, 900}, {40, 900}, {40, 480}, {0, 480}}, {}};
+  const auto in = of_type(gauges({jog}), GaugeType::Internal);
+  auto diag = std::find_if(in.begin(), in.end(), [](const Gauge& g) { return g.at.y > 400 && g.at.y < 480; });
+  ASSERT_NE(diag, in.end());
+  EXPECT_NEAR(diag->cd, 80, 1e-9);
+}
+
+TEST(Gauges, SandwichBetweenTwoNeighbours) {
+  // Spaces 60 and 50 around a 50 wide line: d = 60/2 + 50 + 50/2 = 105, score 52.5.
+  const auto all = gauges({box(0, 0, 1000, 40), box(0, 100, 1000, 150), box(0, 200, 1000, 240)});
+  const auto s = of_type(all, GaugeType::Sandwich);
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_NEAR(s[0].score, 52.5, 1e-9);
+  EXPECT_NEAR(s[0].cd, 50, 1e-9);
+  EXPECT_NEAR(s[0].at.y, 125, 1e-6);
+  EXPECT_NEAR(s[0].tiebreak, 950, 1e-6);  // overlap of the three stretches
+}
+
+TEST(Gauges, CombNeedsTwoTeethTNeedsOne) {
+  // Base 50 wide; teeth 40 wide at gaps 30 and 40 (comb), one tooth at gap 40 (T).
+  const auto all = gauges({box(0, 0, 1000, 50), box(100, 80, 140, 300), box(500, 90, 540, 300),
+                           box(2000, 0, 3000, 50), box(2400, 90, 2440, 300)});
+  const auto comb = of_type(all, GaugeType::Comb);
+  const auto t = of_type(all, GaugeType::T);
+  ASSERT_EQ(comb.size(), 1u);
+  EXPECT_EQ(comb[0].teeth, 2);
+  EXPECT_NEAR(comb[0].score, 0.75 * (15 + 25), 1e-9);  // the nearer tooth: d_tb = 30/2 + 50/2
+  EXPECT_NEAR(comb[0].at.x, 120, 1e-6);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_NEAR(t[0].score, 0.80 * (20 + 25), 1e-9);
+  EXPECT_NEAR(t[0].tiebreak, 40, 1e-6);  // overlap = the tooth's width
+  // Two long parallel lines are neighbours, not teeth.
+  EXPECT_TRUE(of_type(gauges({box(0, 0, 1000, 50), box(0, 90, 1000, 140)}), GaugeType::T).empty());
+}
+
+TEST(Gauges, RankedByScoreThenContextThenTiebreak) {
+  const auto all = gauges({box(0, 0, 1000, 40), box(0, 100, 1000, 150), box(0, 200, 1000, 240),
+                           box(2000, 0, 3000, 50), box(2100, 80, 2140, 300), box(2500, 90, 2540, 300),
+                           box(6000, 0, 6030, 30)});
+  auto context = [](GaugeType t) {
+    switch (t) {
+      case GaugeType::Sandwich: return 0;
+      case GaugeType::Comb: return 1;
+      case GaugeType::T: return 2;
+      case GaugeType::External: return 3;
+      default: return 4;
+    }
+  };
+  double top = 0;
+  for (const Gauge& g : all) top = std::max(top, g.score);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    EXPECT_EQ(all[i].rank, int(i + 1));
+    EXPECT_NEAR(all[i].norm_score, all[i].score / top, 1e-12);
+    if (i == 0) continue;
+    const Gauge& a = all[i - 1];
+    const Gauge& b = all[i];
+    ASSERT_LE(a.score, b.score + 1e-6);
+    if (std::fabs(a.score - b.score) < 1e-6) {
+      ASSERT_LE(context(a.type), context(b.type));
+      if (a.type == b.type) ASSERT_GE(a.tiebreak, b.tiebreak - 1e-6);
+    }
+  }
+  // The comb (score 30) outranks the 30 wide via and the 30 space at the same score.
+  EXPECT_EQ(all[0].type, GaugeType::Comb);
+}
+
+TEST(Gauges, NotchInsideOneShapeIsAnExternalGauge) {
+  Polygon u{{{0, 0}, {100, 0}, {100, 100}, {70, 100}, {70, 20}, {30, 20}, {30, 100}, {0, 100}}, {}};
+  const auto ex = of_type(gauges({u}), GaugeType::External);
+  auto it = std::find_if(ex.begin(), ex.end(), [](const Gauge& g) { return std::fabs(g.cd - 40) < 1e-9; });
+  ASSERT_NE(it, ex.end());
+  EXPECT_NEAR(it->at.x, 50, 1e-6);
+}
