@@ -103,7 +103,9 @@ struct Model {
 // One worker: boxes in, raw pieces out. Boxes are independent, so workers run side by side.
 class Builder {
  public:
-  explicit Builder(const Model& m) : S_(m.S), clip_(m.clip), opt_(m.opt), f_(m.f), g_(m.g), tau_(m.tau) {}
+  Builder(const Model& m, const Box& root, const Box* hole)
+      : S_(m.S), clip_(root), hole_(hole ? *hole : Box{1, 1, -1, -1}), has_hole_(hole != nullptr), opt_(m.opt),
+        f_(m.f), g_(m.g), tau_(m.tau) {}
 
   // The sites that can own a point of b, from a superset `cand`.
   std::vector<int> candidates(const Box& b, const std::vector<int>& cand) const {
@@ -118,6 +120,7 @@ class Builder {
   }
 
   void process(const Box& b, const std::vector<int>& cand) {
+    if (has_hole_ && b.x1 >= hole_.x1 && b.x2 <= hole_.x2 && b.y1 >= hole_.y1 && b.y2 <= hole_.y2) return;
     ++stats.boxes;
     const std::vector<int> keep = candidates(b, cand);
     if (keep.size() <= 1) return;
@@ -395,6 +398,28 @@ class Builder {
     if (std::fabs(f_[t].at(p.x, p.y) - f_[u].at(p.x, p.y)) > tol(p) ||
         std::fabs(f_[t].at(q.x, q.y) - f_[u].at(q.x, q.y)) > tol(q))
       return;
+    if (has_hole_) {  // the far-field pass keeps only what lies outside the inner box
+      double t0 = 0, t1 = 1;
+      const double dx = q.x - p.x, dy = q.y - p.y;
+      auto edge = [&](double pp, double qq) {
+        if (pp == 0) return qq >= 0;
+        const double r = qq / pp;
+        if (pp < 0) { if (r > t1) return false; t0 = std::max(t0, r); }
+        else { if (r < t0) return false; t1 = std::min(t1, r); }
+        return true;
+      };
+      if (edge(-dx, p.x - hole_.x1) && edge(dx, hole_.x2 - p.x) && edge(-dy, p.y - hole_.y1) &&
+          edge(dy, hole_.y2 - p.y) && t1 > t0) {
+        const Vec2 a{p.x + t0 * dx, p.y + t0 * dy}, b{p.x + t1 * dx, p.y + t1 * dy};
+        if (t0 > 1e-12) add_piece(p, a, t, u);
+        if (t1 < 1 - 1e-12) add_piece(b, q, t, u);
+        return;
+      }
+    }
+    add_piece(p, q, t, u);
+  }
+
+  void add_piece(const Vec2& p, const Vec2& q, int t, int u) {
     Piece pc;
     pc.p = p, pc.q = q;
     pc.a = t, pc.b = u;
@@ -442,6 +467,8 @@ class Builder {
 
   const std::vector<Site>& S_;
   const Box clip_;
+  const Box hole_;
+  const bool has_hole_;
   const BuildOptions opt_;
   const std::vector<DistFn>& f_;
   const std::vector<DistFn>& g_;
@@ -491,32 +518,30 @@ std::vector<Piece> join_pieces(std::vector<Piece> in) {
   return out;
 }
 
-}  // namespace
 
-std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats) {
-  if (sites.sites.size() < 2) return {};
-  const Model model(sites, clip, opt);
-  // The top levels of the subdivision, breadth first, become the workers' tasks.
+// One pass of the subdivision over `root` with the candidate sites `cand`, skipping boxes
+// inside `hole` and the parts of pieces there. The top levels, breadth first, become the
+// workers' tasks.
+std::vector<Piece> run(const Model& model, const Box& root, std::vector<int> cand, const Box* hole,
+                       BuildStats& st) {
   std::vector<std::pair<Box, std::vector<int>>> tasks, next;
-  {
-    std::vector<int> all(sites.sites.size());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
-    tasks.emplace_back(clip, std::move(all));
-    const Builder top(model);
-    for (int level = 0; level < 3; ++level) {
-      next.clear();
-      for (auto& [b, cand] : tasks) {
-        for (const Box& q : quarters(b)) {
-          std::vector<int> keep = top.candidates(q, cand);
-          if (keep.size() > 1) next.emplace_back(q, std::move(keep));
-        }
+  tasks.emplace_back(root, std::move(cand));
+  const Builder top(model, root, hole);
+  for (int level = 0; level < 3; ++level) {
+    next.clear();
+    for (auto& [b, c] : tasks) {
+      for (const Box& q : quarters(b)) {
+        if (hole && q.x1 >= hole->x1 && q.x2 <= hole->x2 && q.y1 >= hole->y1 && q.y2 <= hole->y2) continue;
+        std::vector<int> keep = top.candidates(q, c);
+        if (keep.size() > 1) next.emplace_back(q, std::move(keep));
       }
-      tasks.swap(next);
     }
+    tasks.swap(next);
   }
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned n = std::min<unsigned>(opt.threads > 0 ? unsigned(opt.threads) : hw, unsigned(tasks.size()));
-  std::vector<Builder> workers(std::max(1u, n), Builder(model));
+  const unsigned n =
+      std::min<unsigned>(model.opt.threads > 0 ? unsigned(model.opt.threads) : hw, unsigned(tasks.size()));
+  std::vector<Builder> workers(std::max(1u, n), Builder(model, root, hole));
   std::atomic<std::size_t> next_task{0};
   auto work = [&](Builder& w) {
     for (std::size_t i; (i = next_task++) < tasks.size();) w.process(tasks[i].first, tasks[i].second);
@@ -526,11 +551,56 @@ std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const Build
   work(workers[0]);
   for (auto& t : threads) t.join();
   std::vector<Piece> raw;
-  BuildStats st;
   for (Builder& w : workers) {
     raw.insert(raw.end(), w.out.begin(), w.out.end());
     st.boxes += w.stats.boxes, st.solves += w.stats.solves, st.solved_sites += w.stats.solved_sites;
     st.cells += w.stats.cells;
+  }
+  return raw;
+}
+
+}  // namespace
+
+std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats) {
+  if (sites.sites.size() < 2) return {};
+  const Model model(sites, clip, opt);
+  std::vector<int> all(sites.sites.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
+  BuildStats st;
+  // Two passes. Beyond the sites' bounding box lies the far field, where large groups of
+  // sites tie in L-inf and boxes stay crowded (most of the work in one pass over the clip box).
+  // Only sites that own a point of the inner box's border can own a point outside it: the
+  // segment from such a point to its nearest site point crosses the border inside the same
+  // region. So the inner box is built with every site, the far field with those owners only.
+  // The margin is off the integer and half-integer grid, so that no piece runs along the
+  // inner box's border, and dyadic (5/16), so that halving boxes stays exact.
+  double x1 = INFINITY, y1 = INFINITY, x2 = -INFINITY, y2 = -INFINITY;
+  for (const Site& t : sites.sites) {
+    x1 = std::min({x1, double(t.a.x), double(t.b.x)}), x2 = std::max({x2, double(t.a.x), double(t.b.x)});
+    y1 = std::min({y1, double(t.a.y), double(t.b.y)}), y2 = std::max({y2, double(t.a.y), double(t.b.y)});
+  }
+  const double margin = std::floor(std::max({x2 - x1, y2 - y1, 64.0}) / 64) + 0.3125;
+  const Box inner{x1 - margin, y1 - margin, x2 + margin, y2 + margin};
+  std::vector<Piece> raw;
+  if (!opt.far_field_pass || inner.x1 <= clip.x1 || inner.y1 <= clip.y1 || inner.x2 >= clip.x2 ||
+      inner.y2 >= clip.y2) {
+    raw = run(model, clip, all, nullptr, st);
+  } else {
+    raw = run(model, inner, all, nullptr, st);
+    std::vector<int> border;
+    const double eps = 1e-9 * std::max({1.0, std::fabs(inner.x1), std::fabs(inner.x2), std::fabs(inner.y1),
+                                        std::fabs(inner.y2)});
+    auto on_border = [&](const Vec2& v) {
+      return std::fabs(v.x - inner.x1) <= eps || std::fabs(v.x - inner.x2) <= eps || std::fabs(v.y - inner.y1) <= eps ||
+             std::fabs(v.y - inner.y2) <= eps;
+    };
+    for (const Piece& p : raw)
+      if (on_border(p.p) || on_border(p.q)) border.push_back(p.a), border.push_back(p.b);
+    std::sort(border.begin(), border.end());
+    border.erase(std::unique(border.begin(), border.end()), border.end());
+    if (border.size() < 2) border = all;  // one site owns the whole border: let the pass decide
+    std::vector<Piece> far = run(model, clip, border, &inner, st);
+    raw.insert(raw.end(), far.begin(), far.end());
   }
   st.raw_pieces = raw.size();
   if (stats) *stats = st;

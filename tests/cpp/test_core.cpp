@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 
 #include "linf/builder.hpp"
 #include "linf/classify.hpp"
@@ -139,5 +140,31 @@ TEST(Builder, SameDiagramWithOneOrTwoWorkers) {
     ASSERT_EQ(k1.size(), k2.size()) << "seed " << seed;
     for (std::size_t i = 0; i < k1.size(); ++i)
       for (int j = 0; j < 6; ++j) ASSERT_NEAR(k1[i][j], k2[i][j], 1e-6) << "seed " << seed;
+  }
+}
+
+TEST(Builder, FarFieldPassGivesTheOnePassDiagram) {
+  // The far field (beyond the sites' bounding box) is built in a second pass from the owners
+  // of the inner box's border only; the pieces must be those of one pass over the clip box,
+  // up to how a piece crossing the border is cut.
+  const linf::testing::Style styles[] = {linf::testing::Style::Rectilinear, linf::testing::Style::Octilinear,
+                                         linf::testing::Style::AnyAngle};
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    Sites s = sites_of_polygons(merge_polygons(linf::testing::random_layout(seed, styles[seed % 3], 10)));
+    BuildOptions two_pass, one_pass;
+    one_pass.far_field_pass = false;
+    const Box clip = clip_box(s);
+    // Total length per owner pair: robust to a piece being cut in two at the border.
+    auto lengths = [](const std::vector<Piece>& v) {
+      std::map<std::pair<int, int>, double> m;
+      for (const Piece& p : v) m[{p.a, p.b}] += std::hypot(p.q.x - p.p.x, p.q.y - p.p.y);
+      return m;
+    };
+    const auto a = lengths(build_pieces(s, clip, two_pass)), b = lengths(build_pieces(s, clip, one_pass));
+    ASSERT_EQ(a.size(), b.size()) << "seed " << seed;
+    for (auto ia = a.begin(), ib = b.begin(); ia != a.end(); ++ia, ++ib) {
+      ASSERT_EQ(ia->first, ib->first) << "seed " << seed;
+      ASSERT_NEAR(ia->second, ib->second, 1e-6 * (1 + ib->second)) << "seed " << seed;
+    }
   }
 }

@@ -28,6 +28,8 @@ struct BuildOptions {
   int bent_sites = 6;         // at most this many are not affine over the box
   double min_box = 1.0 / 64;  // never cut a box below this side (DBU)
   int threads = 0;            // workers; 0: one per hardware thread
+  bool far_field_pass = true; // build beyond the sites' bounding box in a second pass with the
+                              // border's owners only (off: one pass over the clip box)
 };
 
 struct BuildStats {
