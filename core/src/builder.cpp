@@ -8,6 +8,8 @@
 #include <thread>
 #include <tuple>
 
+#include <boost/container/small_vector.hpp>
+
 #include "affine.hpp"
 #include "cell.hpp"
 
@@ -75,7 +77,8 @@ double box_distance(const Box& b, const Site& s, bool l1 = false) {
 
 struct LocalCell {
   Cell cell;
-  std::vector<signed char> af, ag;  // active piece of f / g per local site, -1 unknown
+  // Active piece of f / g per local site, -1 unknown; inline for the usual few sites.
+  boost::container::small_vector<signed char, 16> af, ag;
 };
 
 // What every worker shares, read-only: the sites and their distance functions.
@@ -285,7 +288,7 @@ class Builder {
         }
       }
       if (r.empty()) continue;
-      emit(r, C[i], C);
+      emit(r, lc, i, C);
     }
   }
 
@@ -347,7 +350,9 @@ class Builder {
     }
   }
 
-  void emit(const Cell& r, int t, const std::vector<int>& C) {
+  void emit(const Cell& r, const LocalCell& lc, std::size_t ti, const std::vector<int>& C) {
+    const int t = C[ti];
+    const Affine& ft = f_[t].piece[lc.af[ti]];
     const std::size_t n = r.v.size();
     for (std::size_t e = 0; e < n; ++e) {
       const Vec2 p = r.v[e], q = r.v[(e + 1) % n];
@@ -363,11 +368,15 @@ class Builder {
       // sites' L1 profiles.
       // Within the cell every L-inf function is affine, so a site ties with t along the whole
       // edge iff it does at both ends, and no L-inf piece changes along the edge's interior.
-      const double ftp = f_[t].at(p.x, p.y), ftq = f_[t].at(q.x, q.y);
-      std::vector<int> tied{t};
-      for (int u : C)
-        if (u != t && std::fabs(f_[u].at(p.x, p.y) - ftp) <= tol(p) && std::fabs(f_[u].at(q.x, q.y) - ftq) <= tol(q))
-          tied.push_back(u);
+      // The cell is closed, so the active pieces give every function's value at its vertices.
+      const double ftp = ft.at(p.x, p.y), ftq = ft.at(q.x, q.y);
+      boost::container::small_vector<int, 8> tied{t};
+      for (std::size_t j = 0; j < C.size(); ++j) {
+        if (j == ti) continue;
+        const Affine& fu = f_[C[j]].piece[lc.af[j]];
+        if (std::fabs(fu.at(p.x, p.y) - ftp) <= tol(p) && std::fabs(fu.at(q.x, q.y) - ftq) <= tol(q))
+          tied.push_back(C[j]);
+      }
       if (tied.size() == 1) continue;  // a split inside t's own region
       // Only sites that also share the least slope across the edge go to the L1 tie-break.
       const double len = std::hypot(nrm.x, nrm.y);

@@ -8,7 +8,7 @@ Cell clip(const Cell& in, const Affine& h) {
   const std::size_t n = in.v.size();
   Cell out;
   if (n < 3) return out;
-  std::vector<double> val(n);
+  boost::container::small_vector<double, 10> val(n);
   bool all_in = true, all_out = true;
   for (std::size_t i = 0; i < n; ++i) {
     double v = h.at(in.v[i].x, in.v[i].y);

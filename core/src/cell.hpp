@@ -1,7 +1,7 @@
 // Convex cells clipped by half-planes. The builder's only geometric construction: every
 // Voronoi piece is (part of) an edge of such a cell.
 #pragma once
-#include <vector>
+#include <boost/container/small_vector.hpp>
 
 #include "affine.hpp"
 #include "linf/piece.hpp"
@@ -9,8 +9,10 @@
 namespace linf::detail {
 
 // Vertices counter-clockwise; edge i runs from v[i] to v[(i+1) % n].
+// Cells are small (a box cut by a few half-planes) and made by the million: their vertices live
+// inline, not on the heap.
 struct Cell {
-  std::vector<Vec2> v;
+  boost::container::small_vector<Vec2, 10> v;
   bool empty() const { return v.size() < 3; }
 };
 
