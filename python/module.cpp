@@ -1,12 +1,16 @@
 // Thin binding: plain Python data in, plain Python data out. No logic lives here.
 #include <pybind11/pybind11.h>
 
+#include <array>
 #include <chrono>
+#include <string>
+#include <tuple>
 #include <pybind11/stl.h>
 
 #include "linf/diagram.hpp"
 #include "linf/engine.hpp"
 #include "linf/gauge.hpp"
+#include "linf/selection.hpp"
 #include "linf/sites.hpp"
 
 namespace py = pybind11;
@@ -96,6 +100,8 @@ py::dict gauges_to_python(const Result& r, const Gauges& g, double seconds_gauge
   py::dict res;
   res["gauges"] = out;
   res["stretches"] = g.stretches.size();
+  res["typical_width"] = g.typical_width;
+  res["space_limit"] = g.space_limit;
   res["diagram"] = d;
   return res;
 }
@@ -139,7 +145,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "gauges_polygons",
-      [](const PyPolygons& polys, bool check, int pairs, int threads, double tooth_fraction) {
+      [](const PyPolygons& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit) {
         const std::vector<Polygon> in = polygons_of(polys);
         Result r;
         Gauges g;
@@ -150,17 +156,82 @@ PYBIND11_MODULE(linf_opc_core, m) {
           const auto t0 = std::chrono::steady_clock::now();
           GaugeOptions o;
           o.tooth_fraction = tooth_fraction;
+          o.space_limit_widths = space_limit;
           g = gauges_of(r.diagram, o);
           seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         }
         return gauges_to_python(r, g, seconds);
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
-      py::arg("tooth_fraction") = 0.5,
+      py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0,
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
       "Returns {'gauges': [(type, x1, y1, x2, y2, cx, cy, cd, score, norm_score, tiebreak, rank, teeth,\n"
       "(a_x1, a_y1, a_x2, a_y2), (b_x1, b_y1, b_x2, b_y2), site_a, site_b, [stretch path (x, y)])] in rank order, 'stretches': n,\n"
-      "'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}. DBU throughout.");
+      "'typical_width', 'space_limit', 'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}.\n"
+      "DBU throughout. space_limit_widths: spaces wider than this many typical widths are not pattern (0: keep all).");
+
+  m.def(
+      "select_windows",
+      [](const std::vector<std::pair<double, double>>& spots, const std::vector<std::array<double, 4>>& markers,
+         const std::vector<double>& sides, const std::vector<std::string>& modes, bool brute) {
+        std::vector<Spot> sp;
+        sp.reserve(spots.size());
+        for (std::size_t i = 0; i < spots.size(); ++i) sp.push_back({{spots[i].first, spots[i].second}, std::int32_t(i)});
+        std::vector<Box> mk;
+        mk.reserve(markers.size());
+        for (auto& m : markers) mk.push_back({m[0], m[1], m[2], m[3]});
+        py::list out;
+        for (const std::string& mode : modes) {
+          if (mode != "A" && mode != "B" && mode != "C") throw py::value_error("mode must be A, B or C");
+          const Cover c = mode == "A" ? Cover::Centre : mode == "B" ? Cover::Inside : Cover::Overlap;
+          for (double side : sides) {
+            Selection s;
+            double seconds = 0;
+            {
+              py::gil_scoped_release unlocked;
+              const auto t0 = std::chrono::steady_clock::now();
+              s = brute ? select_windows_brute(sp, mk, side, c) : select_windows(sp, mk, side, c);
+              seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            }
+            py::list windows;
+            for (const Window& w : s.windows)
+              windows.append(py::make_tuple(w.box.x1, w.box.y1, w.box.x2, w.box.y2, w.gauge, w.markers));
+            py::dict r;
+            r["mode"] = mode;
+            r["side"] = side;
+            r["windows"] = windows;
+            r["used"] = s.used;
+            r["failed"] = s.failed;
+            r["redundant"] = s.redundant;
+            r["traversed"] = s.traversed;
+            r["covered"] = s.covered;
+            r["seconds"] = seconds;
+            out.append(r);
+          }
+        }
+        return out;
+      },
+      py::arg("spots"), py::arg("markers"), py::arg("sides"), py::arg("modes"), py::arg("brute") = false,
+      "Pattern windows for every mode and side: spots [(x, y)] are gauge points in rank order, markers\n"
+      "[(x1, y1, x2, y2)], sides the window sides, modes among A (centre strictly inside), B (marker inside),\n"
+      "C (overlap). Returns, modes outer and sides inner, [{'mode', 'side', 'windows': [(x1, y1, x2, y2,\n"
+      "spot index, [markers newly covered])], 'used', 'failed' (spot indices), 'redundant', 'traversed',\n"
+      "'covered', 'seconds'}]. brute=True: the brute-force oracle.");
+
+  m.def(
+      "cover_points",
+      [](const std::vector<std::pair<double, double>>& points, double side) {
+        std::vector<Vec2> p;
+        for (auto& q : points) p.push_back({q.first, q.second});
+        std::vector<std::tuple<double, double, double, double>> out;
+        for (const Box& b : cover_points(p, side)) out.emplace_back(b.x1, b.y1, b.x2, b.y2);
+        return out;
+      },
+      py::arg("points"), py::arg("side"),
+      "The thesis's window-reduction heuristic: windows [(x1, y1, x2, y2)] covering the points.");
+
+  m.def("estimate_pitch", &estimate_pitch, py::arg("widths"), py::arg("spaces"),
+        "Pitch from gauges: weighted median width + weighted median space; pairs are (cd, extension).");
 
   m.def(
       "cgal_construction_seconds",

@@ -327,6 +327,18 @@ void context_gauges(const Sites& sites, const std::vector<Stretch>& all, std::in
   }
 }
 
+// The median of (value, weight) pairs by weight; 0 if there is no weight.
+double weighted_median(std::vector<std::pair<double, double>> v) {
+  double total = 0;
+  for (auto& p : v) total += p.second;
+  if (total <= 0) return 0;
+  std::sort(v.begin(), v.end());
+  double acc = 0;
+  for (auto& [x, w] : v)
+    if ((acc += w) >= 0.5 * total) return x;
+  return v.back().first;
+}
+
 // Equal scores rank by context: sandwich > comb > T > external > internal.
 int context(GaugeType t) {
   switch (t) {
@@ -358,6 +370,15 @@ Gauges gauges_of(const Diagram& d, const GaugeOptions& opt) {
   for (std::int32_t i = 0; i < n; ++i) ok[i] = measurable(sites, r.stretches[i]);
   const std::vector<bool> extra = redundant(sites, r.stretches, ok);
   for (std::int32_t i = 0; i < n; ++i) ok[i] = ok[i] && !extra[i];
+  // The typical width decides which spaces are pattern (see GaugeOptions::space_limit_widths).
+  std::vector<std::pair<double, double>> widths;
+  for (std::int32_t i = 0; i < n; ++i)
+    if (ok[i] && r.stretches[i].kind == PieceKind::Internal) widths.push_back({2 * least(r.stretches[i]), r.stretches[i].length});
+  r.typical_width = weighted_median(widths);
+  r.space_limit = opt.space_limit_widths > 0 && r.typical_width > 0 ? opt.space_limit_widths * r.typical_width : kNone;
+  for (std::int32_t i = 0; i < n; ++i)
+    if (ok[i] && r.stretches[i].kind != PieceKind::Internal && 2 * least(r.stretches[i]) > r.space_limit + kTol)
+      ok[i] = false;
   std::unordered_map<std::int32_t, std::vector<std::int32_t>> external_at;
   for (std::int32_t i = 0; i < n; ++i) {
     const Stretch& s = r.stretches[i];

@@ -147,3 +147,16 @@ TEST(Gauges, NotchInsideOneShapeIsAnExternalGauge) {
   ASSERT_NE(it, ex.end());
   EXPECT_NEAR(it->at.x, 50, 1e-6);
 }
+
+TEST(Gauges, SpacesBeyondTenWidthsAreNotPattern) {
+  // Two 40 wide bars 500 apart (12.5 widths): the far field, no external gauge; 300 apart: one.
+  const Diagram far = voronoi_of_polygons({box(0, 0, 1000, 40), box(0, 540, 1000, 580)}).diagram;
+  const Gauges g = gauges_of(far);
+  EXPECT_NEAR(g.typical_width, 40, 1e-9);
+  EXPECT_NEAR(g.space_limit, 400, 1e-9);
+  EXPECT_TRUE(of_type(g.gauges, GaugeType::External).empty());
+  GaugeOptions all;
+  all.space_limit_widths = 0;
+  EXPECT_FALSE(of_type(gauges_of(far, all).gauges, GaugeType::External).empty());
+  EXPECT_FALSE(of_type(gauges({box(0, 0, 1000, 40), box(0, 340, 1000, 380)}), GaugeType::External).empty());
+}

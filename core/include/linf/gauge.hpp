@@ -36,11 +36,17 @@ struct GaugeOptions {
   // A neighbour is a tooth when the feature it shows the base (a line end, a narrow side, a
   // corner) is at most this fraction of the base's edge long: it meets part of the base only.
   double tooth_fraction = 0.5;
+  // Spaces wider than this many typical widths (the extension-weighted median width of the
+  // layer) are the far field between blocks and around the layout, not pattern: no external
+  // gauge there, and such a space makes no neighbour for sandwich, comb or T. 0 keeps all.
+  double space_limit_widths = 10;
 };
 
 struct Gauges {
   std::vector<Stretch> stretches;
   std::vector<Gauge> gauges;  // ranked
+  double typical_width = 0;   // extension-weighted median width of the internal gauges
+  double space_limit = 0;     // widest space reported (infinite if no limit)
 };
 
 Gauges gauges_of(const Diagram& d, const GaugeOptions& opt = {});

@@ -7,5 +7,8 @@ except ImportError:  # a checkout: the build directory is on sys.path
 voronoi_polygons = _core.voronoi_polygons
 voronoi_sites = _core.voronoi_sites
 gauges_polygons = _core.gauges_polygons
+select_windows = _core.select_windows
+cover_points = _core.cover_points
+estimate_pitch = _core.estimate_pitch
 cgal_construction_seconds = _core.cgal_construction_seconds
 DiagramError = _core.DiagramError

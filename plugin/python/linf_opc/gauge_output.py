@@ -85,6 +85,8 @@ def summary(result, dbu):
         "counts": result.counts(),
         "score_range_um": {t: [round(lo * dbu, 9), round(hi * dbu, 9)] for t, (lo, hi) in ranges.items()},
         "stretches": result.stretches,
+        "typical_width_um": round(result.typical_width * dbu, 9),
+        "space_limit_um": round(result.space_limit * dbu, 9) if result.space_limit < float("inf") else None,
         "diagram": {k: result.diagram[k] for k in ("sites", "pieces", "counts")},
         "check": {k: v for k, v in result.diagram["check"].items() if k != "messages"},
         "seconds": result.seconds,

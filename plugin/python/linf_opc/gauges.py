@@ -20,6 +20,8 @@ class Gauges:
     def __init__(self, raw, seconds_total):
         self.gauges = [Gauge(*g) for g in raw["gauges"]]
         self.stretches = raw["stretches"]
+        self.typical_width = raw["typical_width"]
+        self.space_limit = raw["space_limit"]
         self.diagram = raw["diagram"]
         self.seconds = dict(self.diagram["seconds"], total=seconds_total)
 
@@ -38,9 +40,9 @@ class Gauges:
         return r
 
 
-def compute(polygons, check=True, tooth_fraction=0.5):
+def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0):
     t0 = time.perf_counter()
-    raw = core.gauges_polygons(polygons, check, 2000, 0, tooth_fraction)
+    raw = core.gauges_polygons(polygons, check, 2000, 0, tooth_fraction, space_limit_widths)
     return Gauges(raw, time.perf_counter() - t0)
 
 

@@ -1,0 +1,142 @@
+#include "linf/selection.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+
+namespace linf {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+
+namespace {
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPoint>;
+using Entry = std::pair<BBox, std::int32_t>;
+
+BBox to_bbox(const Box& b) { return BBox(BPoint(b.x1, b.y1), BPoint(b.x2, b.y2)); }
+
+Box window_at(const Vec2& c, double side) {
+  const double h = 0.5 * side;
+  return {c.x - h, c.y - h, c.x + h, c.y + h};
+}
+
+// The loop shared by the fast and the brute-force selection: `query(window, out)` lists the
+// markers the window covers.
+template <class Query>
+Selection run(const std::vector<Spot>& ranked, std::size_t n_markers, double side, Query query) {
+  Selection s;
+  std::vector<char> done(n_markers, 0);
+  std::vector<std::int32_t> hit;
+  for (std::size_t i = 0; i < ranked.size() && s.covered < std::int32_t(n_markers); ++i) {
+    ++s.traversed;
+    const Box w = window_at(ranked[i].at, side);
+    hit.clear();
+    query(w, hit);
+    if (hit.empty()) {
+      s.failed.push_back(std::int32_t(i));
+      continue;
+    }
+    Window win;
+    win.box = w;
+    win.gauge = std::int32_t(i);
+    for (std::int32_t m : hit)
+      if (!done[m]) done[m] = 1, win.markers.push_back(m);
+    if (win.markers.empty()) {
+      ++s.redundant;
+      continue;
+    }
+    std::sort(win.markers.begin(), win.markers.end());
+    s.covered += std::int32_t(win.markers.size());
+    s.used.push_back(std::int32_t(i));
+    s.windows.push_back(std::move(win));
+  }
+  return s;
+}
+}  // namespace
+
+bool covers(const Box& w, const Box& m, Cover mode) {
+  switch (mode) {
+    case Cover::Centre: {
+      const double cx = 0.5 * (m.x1 + m.x2), cy = 0.5 * (m.y1 + m.y2);
+      return cx > w.x1 && cx < w.x2 && cy > w.y1 && cy < w.y2;
+    }
+    case Cover::Inside: return m.x1 >= w.x1 && m.x2 <= w.x2 && m.y1 >= w.y1 && m.y2 <= w.y2;
+    case Cover::Overlap: return m.x1 <= w.x2 && m.x2 >= w.x1 && m.y1 <= w.y2 && m.y2 >= w.y1;
+  }
+  return false;
+}
+
+Selection select_windows(const std::vector<Spot>& ranked, const std::vector<Box>& markers, double side, Cover mode) {
+  // Mode A queries the marker centres, B and C the marker boxes; each query is the closed
+  // intersection with the window, then refined by the exact predicate (strictness, containment).
+  std::vector<Entry> entries;
+  entries.reserve(markers.size());
+  for (std::size_t i = 0; i < markers.size(); ++i) {
+    const Box& m = markers[i];
+    if (mode == Cover::Centre) {
+      const double cx = 0.5 * (m.x1 + m.x2), cy = 0.5 * (m.y1 + m.y2);
+      entries.push_back({BBox(BPoint(cx, cy), BPoint(cx, cy)), std::int32_t(i)});
+    } else {
+      entries.push_back({to_bbox(m), std::int32_t(i)});
+    }
+  }
+  const bgi::rtree<Entry, bgi::rstar<16>> tree(entries.begin(), entries.end());
+  std::vector<Entry> found;
+  return run(ranked, markers.size(), side, [&](const Box& w, std::vector<std::int32_t>& out) {
+    found.clear();
+    if (mode == Cover::Inside)
+      tree.query(bgi::covered_by(to_bbox(w)), std::back_inserter(found));
+    else
+      tree.query(bgi::intersects(to_bbox(w)), std::back_inserter(found));
+    for (const Entry& e : found)
+      if (covers(w, markers[e.second], mode)) out.push_back(e.second);
+  });
+}
+
+Selection select_windows_brute(const std::vector<Spot>& ranked, const std::vector<Box>& markers, double side,
+                               Cover mode) {
+  return run(ranked, markers.size(), side, [&](const Box& w, std::vector<std::int32_t>& out) {
+    for (std::size_t i = 0; i < markers.size(); ++i)
+      if (covers(w, markers[i], mode)) out.push_back(std::int32_t(i));
+  });
+}
+
+std::vector<Box> cover_points(std::vector<Vec2> points, double side) {
+  std::sort(points.begin(), points.end(), [](const Vec2& a, const Vec2& b) {
+    return a.y < b.y || (a.y == b.y && a.x < b.x);
+  });
+  std::vector<char> gone(points.size(), 0);
+  std::vector<Box> out;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (gone[i]) continue;
+    const Box w{points[i].x - 1, points[i].y - 1, points[i].x - 1 + side, points[i].y - 1 + side};
+    out.push_back(w);
+    // Points are sorted by y, so those inside lie in a band starting here.
+    for (std::size_t j = i; j < points.size() && points[j].y <= w.y2; ++j)
+      if (!gone[j] && points[j].x >= w.x1 && points[j].x <= w.x2) gone[j] = 1;
+  }
+  return out;
+}
+
+double estimate_pitch(const std::vector<std::pair<double, double>>& widths,
+                      const std::vector<std::pair<double, double>>& spaces) {
+  auto median = [](std::vector<std::pair<double, double>> v, double limit) {
+    v.erase(std::remove_if(v.begin(), v.end(), [&](auto& p) { return p.first > limit || p.second <= 0; }), v.end());
+    double total = 0;
+    for (auto& p : v) total += p.second;
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    double acc = 0;
+    for (auto& [cd, ext] : v)
+      if ((acc += ext) >= 0.5 * total) return cd;
+    return v.back().first;
+  };
+  const double w = median(widths, INFINITY);
+  const double s = median(spaces, 10 * w);
+  return w > 0 && s > 0 ? w + s : 0.0;
+}
+
+}  // namespace linf

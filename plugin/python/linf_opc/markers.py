@@ -1,0 +1,129 @@
+"""Markers: regions an optical rule check or a litho simulation flagged, as boxes in DBU.
+
+A marker SPEC is one of
+  L/D               a layer of the layout (boxes, polygons, paths: their bounding boxes);
+  FILE.lyrdb        a KLayout report database (each item: the bounding box of its shapes);
+  FILE.csv          points or boxes in DBU of the layout (decimals allowed): columns x,y (points, e.g. the
+                    ICCAD16 hotspot files def,id,category,x,y) or x1,y1,x2,y2 (boxes); a
+                    suffix @um reads micrometres instead.
+Identical markers (the same hotspot under several process conditions) count once. Rows that
+do not parse are skipped and counted; a file with no usable row is an error.
+"""
+import csv
+import os
+
+import pya
+
+
+class MarkerError(ValueError):
+    pass
+
+
+class Markers:
+    def __init__(self, boxes, source, skipped=0, duplicates=0):
+        self.boxes = boxes          # [(x1, y1, x2, y2)] in DBU, a point as a box of zero size
+        self.source = source
+        self.skipped = skipped      # malformed rows
+        self.duplicates = duplicates
+
+    def summary(self):
+        return {"source": self.source, "markers": len(self.boxes), "skipped_rows": self.skipped,
+                "duplicates_merged": self.duplicates}
+
+
+def _unique(boxes):
+    seen, out = set(), []
+    for b in boxes:
+        if b not in seen:
+            seen.add(b)
+            out.append(b)
+    return out, len(boxes) - len(out)
+
+
+def from_layer(cell, layout, spec):
+    try:
+        l, d = (int(v) for v in spec.split("/"))
+    except ValueError:
+        raise MarkerError("marker layer must be L/D, not %r" % spec)
+    index = layout.find_layer(l, d)
+    if index is None:
+        raise MarkerError("marker layer %s is not in the layout" % spec)
+    boxes = []
+    it = cell.begin_shapes_rec(index)
+    while not it.at_end():
+        if not it.shape().is_text():
+            b = it.shape().bbox().transformed(it.trans())
+            boxes.append((b.left, b.bottom, b.right, b.top))
+        it.next()
+    boxes, dup = _unique(boxes)
+    return Markers(boxes, "layer " + spec, 0, dup)
+
+
+def from_rdb(path, dbu):
+    rdb = pya.ReportDatabase("markers")
+    try:
+        rdb.load(path)
+    except RuntimeError as e:
+        raise MarkerError("cannot read marker database %s: %s" % (path, str(e).splitlines()[0]))
+    boxes, skipped = [], 0
+    for item in rdb.each_item():
+        box = pya.DBox()
+        for v in item.each_value():
+            for kind, get in (("is_box", "box"), ("is_polygon", "polygon"), ("is_edge", "edge"),
+                              ("is_edge_pair", "edge_pair"), ("is_path", "path")):
+                if getattr(v, kind)():
+                    box += getattr(v, get)().bbox()
+        if box.empty():
+            skipped += 1
+            continue
+        boxes.append(tuple(c / dbu for c in (box.left, box.bottom, box.right, box.top)))
+    boxes, dup = _unique(boxes)
+    return Markers(boxes, path, skipped, dup)
+
+
+def from_csv(path, dbu, micrometres=False):
+    scale = 1.0 / dbu if micrometres else 1.0
+    try:
+        f = open(path, newline="")
+    except OSError as e:
+        raise MarkerError("cannot read marker file %s: %s" % (path, e.strerror))
+    with f:
+        rows = list(csv.reader(f))
+    if not rows:
+        raise MarkerError("marker file %s is empty" % path)
+    head = [h.strip().lower() for h in rows[0]]
+    if all(k in head for k in ("x1", "y1", "x2", "y2")):
+        cols = [head.index(k) for k in ("x1", "y1", "x2", "y2")]
+    elif "x" in head and "y" in head:
+        cols = [head.index("x"), head.index("y"), head.index("x"), head.index("y")]
+    else:
+        raise MarkerError("marker file %s needs columns x,y or x1,y1,x2,y2 in its header, not %s"
+                          % (path, ",".join(rows[0])))
+    boxes, skipped = [], 0
+    for r in rows[1:]:
+        try:
+            x1, y1, x2, y2 = (float(r[c]) * scale for c in cols)
+        except (ValueError, IndexError):
+            skipped += 1
+            continue
+        boxes.append((min(x1, x2), min(y1, y2), max(x1, x2), max(y1, y2)))
+    if not boxes:
+        raise MarkerError("marker file %s has no usable row (%d skipped)" % (path, skipped))
+    boxes, dup = _unique(boxes)
+    return Markers(boxes, path, skipped, dup)
+
+
+def load(spec, layout, cell):
+    """Markers from a SPEC (see the module's doc), in the layout's DBU."""
+    if not spec:
+        raise MarkerError("no marker source given")
+    micrometres = spec.endswith("@um")
+    path = spec[:-3] if micrometres else spec
+    low = path.lower()
+    if low.endswith(".csv"):
+        return from_csv(path, layout.dbu, micrometres)
+    if low.endswith(".lyrdb") or low.endswith(".rdb"):
+        if not os.path.isfile(path):
+            raise MarkerError("marker file not found: %s" % path)
+        return from_rdb(path, layout.dbu)
+    return from_layer(cell, layout, path)

@@ -1,0 +1,130 @@
+"""A self-contained HTML report of a selection study: the thesis's tables, SVG plots of
+coverage, useful gauges and runtime against window size (Figures 5.17-5.19), and a picture of
+the layout with the chosen windows. No network resources."""
+import html
+
+COLOURS = {"A": "#1f77b4", "B": "#d62728", "C": "#2ca02c"}
+
+
+def _table(head, rows):
+    out = ["<table><tr>" + "".join("<th>%s</th>" % html.escape(str(h)) for h in head) + "</tr>"]
+    for r in rows:
+        out.append("<tr>" + "".join("<td>%s</td>" % html.escape(_fmt(v)) for v in r) + "</tr>")
+    return "\n".join(out) + "</table>"
+
+
+def _fmt(v):
+    if isinstance(v, float):
+        return "%.4g" % v
+    if isinstance(v, list) and len(v) == 2:
+        return "[%.3g - %.3g]" % tuple(v)
+    if v is None:
+        return "-"
+    return str(v)
+
+
+def _plot(title, ylabel, series, sizes):
+    """A line plot: series {mode: [y per size]}."""
+    w, h, l, b = 420, 260, 60, 40
+    ys = [y for v in series.values() for y in v if y is not None]
+    lo, hi = (min(ys), max(ys)) if ys else (0, 1)
+    if hi == lo:
+        hi = lo + 1
+    x = lambda i: l + (w - l - 20) * (i / max(1, len(sizes) - 1))
+    y = lambda v: h - b - (h - b - 20) * ((v - lo) / (hi - lo))
+    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" class="plot">' % (w, h),
+           '<text x="%d" y="14" font-weight="bold">%s</text>' % (l, html.escape(title)),
+           '<line x1="%d" y1="%d" x2="%d" y2="%d" stroke="black"/>' % (l, h - b, w - 10, h - b),
+           '<line x1="%d" y1="20" x2="%d" y2="%d" stroke="black"/>' % (l, l, h - b),
+           '<text x="4" y="%d" font-size="11">%s</text>' % (h / 2, html.escape(ylabel))]
+    for i, k in enumerate(sizes):
+        out.append('<text x="%.0f" y="%d" font-size="11" text-anchor="middle">%dx%d</text>' % (x(i), h - b + 16, k, k))
+    for v in (lo, hi):
+        out.append('<text x="%d" y="%.0f" font-size="10" text-anchor="end">%.4g</text>' % (l - 4, y(v) + 4, v))
+    for j, (mode, vals) in enumerate(sorted(series.items())):
+        pts = " ".join("%.1f,%.1f" % (x(i), y(v)) for i, v in enumerate(vals) if v is not None)
+        c = COLOURS.get(mode, "black")
+        out.append('<polyline fill="none" stroke="%s" stroke-width="2" points="%s"/>' % (c, pts))
+        out.append('<text x="%d" y="%d" fill="%s" font-size="11">mode %s</text>' % (w - 70, 30 + 14 * j, c, mode))
+    out.append("</svg>")
+    return "\n".join(out)
+
+
+def _picture(polygons, run, markers, size=700):
+    xs = [p[0] for outer, _ in polygons for p in outer] + [b[0] for b in markers] + [b[2] for b in markers]
+    ys = [p[1] for outer, _ in polygons for p in outer] + [b[1] for b in markers] + [b[3] for b in markers]
+    if not xs:
+        return ""
+    x0, x1, y0, y1 = min(xs), max(xs), min(ys), max(ys)
+    s = size / max(x1 - x0, y1 - y0, 1)
+    X = lambda v: (v - x0) * s
+    Y = lambda v: (y1 - v) * s
+    d = []
+    for outer, holes in polygons:
+        for ring in [outer] + holes:
+            d.append("M" + " L".join("%.1f %.1f" % (X(px), Y(py)) for px, py in ring) + "Z")
+    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%.0f" height="%.0f" class="layout">'
+           % ((x1 - x0) * s + 2, (y1 - y0) * s + 2),
+           '<path fill="#bbbbbb" fill-rule="evenodd" d="%s"/>' % " ".join(d)]
+    for b in markers:
+        out.append('<rect x="%.1f" y="%.1f" width="%.1f" height="%.1f" fill="none" stroke="#d62728"/>'
+                   % (X(b[0]) - 1, Y(b[3]) - 1, max(2, (b[2] - b[0]) * s), max(2, (b[3] - b[1]) * s)))
+    for x1_, y1_, x2_, y2_, gi, ms in run.windows:
+        out.append('<rect x="%.1f" y="%.1f" width="%.1f" height="%.1f" fill="none" stroke="#1f77b4"/>'
+                   % (X(x1_), Y(y2_), (x2_ - x1_) * s, (y2_ - y1_) * s))
+    out.append("</svg>")
+    return "\n".join(out)
+
+
+def write(path, title, stats, study, polygons, dbu):
+    sizes = sorted(study.heuristic)
+    modes = sorted(set(m for m, k in study.runs))
+    cov = {m: [study.runs[(m, k)].covered if (m, k) in study.runs else None for k in sizes] for m in modes}
+    use = {m: [len(study.runs[(m, k)].used) if (m, k) in study.runs else None for k in sizes] for m in modes}
+    tim = {m: [study.runs[(m, k)].seconds if (m, k) in study.runs else None for k in sizes] for m in modes}
+    chosen = study.runs[(stats["chosen"]["mode"], stats["chosen"]["size"])]
+    parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'><title>%s</title>" % html.escape(title),
+             "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;margin:1em 0}"
+             "td,th{border:1px solid #999;padding:2px 6px;text-align:right}svg{margin:0.5em}</style></head><body>",
+             "<h1>%s</h1>" % html.escape(title),
+             "<p>Pitch %.4g &micro;m; %d markers; %d gauges ranked. Windows are k&times;k pitches centred on "
+             "gauges in rank order; a window is kept if it covers a marker not yet covered.</p>"
+             % (stats["pitch_um"], stats["markers"], stats.get("gauges", 0))]
+    head = ["mode", "W_s", "side (um)", "M_c", "G_u", "r_u", "G_f", "r_f", "redundant", "P_d (%)", "u_g (%)", "T (s)"]
+    for m in modes:
+        parts.append("<h2>Coverage, mode %s</h2>" % m)
+        parts.append(_table(head, [[r[k] for k in ("mode", "W_s", "side_um", "M_c", "G_u", "r_u", "G_f", "r_f",
+                                                   "redundant", "P_d", "u_g", "T")]
+                                   for r in stats["coverage"] if r["mode"] == m]))
+    parts.append("<h2>Figures</h2>")
+    parts.append(_plot("Markers covered (M_c)", "M_c", cov, sizes))
+    parts.append(_plot("Useful gauges (G_u)", "G_u", use, sizes))
+    parts.append(_plot("Selection time (s)", "T", tim, sizes))
+    types = ["internal", "external", "sandwich", "comb", "T"]
+    for which in ("used", "failed"):
+        parts.append("<h2>Gauge distribution: %s gauges</h2>" % which)
+        rows = []
+        for key, dist in stats["distribution"].items():
+            row = [key]
+            for t in types:
+                row += [dist[which][t]["n"], dist[which][t]["range"]]
+            rows.append(row + [sum(dist[which][t]["n"] for t in types)])
+        parts.append(_table(["run"] + [x for t in types for x in ("N_" + t, "r_" + t)] + ["total"], rows))
+    parts.append("<h2>Window reduction (heuristic)</h2>")
+    parts.append(_table(["W_s", "W_b", "W_a", "R_w (%)", "W_m"],
+                        [[k, h["W_b"], h["W_a"], h["R_w"], h["W_m"]] for k, h in stats["heuristic"].items()]))
+    key = "%s %dx%d" % (chosen.mode, chosen.size, chosen.size)
+    parts.append("<h2>Representative gauges (%s)</h2>" % key)
+    parts.append(_table(["R_g", "type", "S_n", "N_g", "S (%)"],
+                        [["%s_%d" % (c["type"][0], i + 1), c["type"], c["S_n"], c["N_g"], c["similarity_pct"]]
+                         for i, c in enumerate(stats["representatives"][key])]))
+    if "similarity" in stats:
+        s = stats["similarity"]
+        parts.append("<h2>Similarity of the two halves (split at x = %.4g &micro;m)</h2>" % s["x_split_um"])
+        parts.append(_table(["type", "S_n", "N_g^1", "N_g^2"], [[c[0], c[1], c[2], c[3]] for c in s["classes"]]))
+        parts.append("<p>N_t^1 = %d, N_t^2 = %d, S_12 = %.2f%%</p>" % (s["N_t1"], s["N_t2"], s["S_12"]))
+    parts.append("<h2>Layout with the windows (%s)</h2>" % key)
+    parts.append(_picture(polygons, chosen, study.markers))
+    parts.append("</body></html>")
+    with open(path, "w") as f:
+        f.write("\n".join(parts))

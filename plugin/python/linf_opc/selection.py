@@ -1,0 +1,124 @@
+"""The pattern-selection stage (thesis 5.2-5.3).
+
+in:  ranked gauges (gauges.py), markers (boxes in DBU, markers.py), the pitch in DBU, window
+     sizes in pitches, coverage modes A/B/C
+out: Study: one Run per (mode, size) with its windows and the columns of Tables 5.2-5.4, the
+     gauge distribution by type (Tables 5.5-5.6), representative classes (Table 5.8), and per
+     size the window-reduction heuristic (Table 5.7).
+The selection itself runs in the core (an R-tree over the markers); this module counts.
+"""
+import time
+
+from . import core
+
+SIZES = (5, 6, 7, 8)
+MODES = ("A", "B", "C")
+MODE_NAMES = {"A": "marker centre strictly inside the window", "B": "marker entirely inside the window",
+              "C": "marker overlapping the window"}
+
+
+def pitch_of(gauges):
+    """Estimated pitch in DBU (core.estimate_pitch: weighted median width + space)."""
+    widths = [(g.cd, g.tiebreak) for g in gauges if g.type == "internal"]
+    spaces = [(g.cd, g.tiebreak) for g in gauges if g.type == "external"]
+    return core.estimate_pitch(widths, spaces)
+
+
+def score_range(gs):
+    return [round(min(g.norm_score for g in gs), 6), round(max(g.norm_score for g in gs), 6)] if gs else None
+
+
+def by_type(gs, types):
+    """{type: {"n": count, "range": [lo, hi] of normalised scores}} (Tables 5.5, 5.6)."""
+    return {t: {"n": sum(1 for g in gs if g.type == t), "range": score_range([g for g in gs if g.type == t])}
+            for t in types}
+
+
+def classes(gs, norm=None):
+    """Representative classes (Table 5.8): gauges of one type with the same normalised score
+    (rounded to 3 decimals). Returns [(type, S_n, N_g)], largest first. `norm` overrides each
+    gauge's normalised score (for two layouts on a common scale)."""
+    count = {}
+    for g in gs:
+        s = round(norm(g) if norm else g.norm_score, 3)
+        count[(g.type, s)] = count.get((g.type, s), 0) + 1
+    return sorted(((t, s, n) for (t, s), n in count.items()), key=lambda c: (-c[2], c[0], c[1]))
+
+
+def similarity(c1, c2):
+    """S_12 of Table 5.9: gauges of both layouts in classes they share (type and S_n), over all
+    gauges of both: sum 2 min(N1, N2) / (N_t1 + N_t2) x 100."""
+    n1 = {(t, s): n for t, s, n in c1}
+    n2 = {(t, s): n for t, s, n in c2}
+    total = sum(n1.values()) + sum(n2.values())
+    common = sum(2 * min(n, n2[k]) for k, n in n1.items() if k in n2)
+    return 100.0 * common / total if total else 0.0
+
+
+class Run:
+    def __init__(self, mode, size, side, raw, gauges, n_markers, types):
+        self.mode, self.size, self.side = mode, size, side
+        self.windows = raw["windows"]  # (x1, y1, x2, y2, gauge index, [markers newly covered])
+        self.used = [gauges[i] for i in raw["used"]]
+        self.failed = [gauges[i] for i in raw["failed"]]
+        self.redundant = raw["redundant"]
+        self.traversed = raw["traversed"]
+        self.covered = raw["covered"]
+        self.seconds = raw["seconds"]
+        self.n_markers = n_markers
+        self.types = types
+
+    def row(self, dbu):
+        """The columns of Tables 5.2-5.4 (T in seconds, the core's selection time)."""
+        gu, gf = len(self.used), len(self.failed)
+        return {"mode": self.mode, "W_s": "%dx%d" % (self.size, self.size), "side_um": round(self.side * dbu, 6),
+                "M_c": self.covered, "markers": self.n_markers, "G_u": gu, "r_u": score_range(self.used),
+                "G_f": gf, "r_f": score_range(self.failed), "redundant": self.redundant,
+                "traversed": self.traversed,
+                "P_d": round(100.0 * self.covered / self.n_markers, 4) if self.n_markers else 0.0,
+                "u_g": round(100.0 * gu / (gu + gf), 4) if gu + gf else 0.0, "T": self.seconds}
+
+    def distribution(self):
+        return {"used": by_type(self.used, self.types), "failed": by_type(self.failed, self.types)}
+
+    def representatives(self):
+        total = len(self.used)
+        return [{"type": t, "S_n": s, "N_g": n, "similarity_pct": round(100.0 * n / total, 4)}
+                for t, s, n in classes(self.used)]
+
+
+class Study:
+    def __init__(self, runs, heuristic, pitch, markers, seconds):
+        self.runs = runs            # {(mode, size): Run}
+        self.heuristic = heuristic  # {size: {"W_b", "W_a", "R_w", "W_m"}}
+        self.pitch = pitch
+        self.markers = markers
+        self.seconds = seconds
+
+    def best(self, mode):
+        """The smallest size with the highest coverage for `mode`."""
+        runs = [r for (m, s), r in sorted(self.runs.items()) if m == mode]
+        return max(runs, key=lambda r: (r.covered, -r.size)) if runs else None
+
+
+def study(gauges, markers, pitch, sizes=SIZES, modes=MODES, types=("internal", "external", "sandwich", "comb", "T")):
+    """Runs every (mode, size); gauges in rank order; markers [(x1, y1, x2, y2)] in DBU.
+    `seconds` covers the core's selections, the counting and the heuristic."""
+    sizes, modes = list(sizes), list(modes)
+    t0 = time.perf_counter()
+    spots = [(g.cx, g.cy) for g in gauges]
+    raw = core.select_windows(spots, markers, [k * pitch for k in sizes], list(modes))
+    runs = {}
+    for i, r in enumerate(raw):
+        m, k = modes[i // len(sizes)], sizes[i % len(sizes)]
+        runs[(m, k)] = Run(m, k, r["side"], r, gauges, len(markers), types)
+    centres = [((b[0] + b[2]) / 2, (b[1] + b[3]) / 2) for b in markers]
+    heuristic = {}
+    for k in sizes:
+        base = runs.get(("A", k)) or next(r for (m, s), r in runs.items() if s == k)
+        wb = len(base.windows)
+        wa = len(core.cover_points([(g.cx, g.cy) for g in base.used], k * pitch))
+        heuristic[k] = {"mode": base.mode, "W_b": wb, "W_a": wa,
+                        "R_w": round(100.0 * (wb - wa) / wb, 4) if wb else 0.0,
+                        "W_m": len(core.cover_points(centres, k * pitch))}
+    return Study(runs, heuristic, pitch, markers, time.perf_counter() - t0)
