@@ -106,6 +106,17 @@ py::dict gauges_to_python(const Result& r, const Gauges& g, double seconds_gauge
   return res;
 }
 
+// A contiguous buffer of doubles (array('d'), memoryview), its length a multiple of `group`.
+std::vector<double> doubles_of(const py::buffer& b, std::size_t group, const char* name) {
+  const py::buffer_info info = b.request();
+  if (info.format != py::format_descriptor<double>::format() || info.ndim != 1)
+    throw py::value_error(std::string(name) + " must be a flat array of doubles, array('d')");
+  const auto* p = static_cast<const double*>(info.ptr);
+  const std::size_t n = std::size_t(info.shape[0]);
+  if (n % group) throw py::value_error(std::string(name) + ": length must be a multiple of " + std::to_string(group));
+  return std::vector<double>(p, p + n);
+}
+
 DiagramOptions options(bool check, int pairs, int threads) {
   DiagramOptions o;
   o.check = check;
@@ -172,14 +183,23 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "select_windows",
-      [](const std::vector<std::pair<double, double>>& spots, const std::vector<std::array<double, 4>>& markers,
-         const std::vector<double>& sides, const std::vector<std::string>& modes, bool brute) {
+      [](py::buffer spots, py::buffer markers, const std::vector<double>& sides, const std::vector<std::string>& modes,
+         bool brute) {
+        // Flat arrays of doubles (array('d')): tens of thousands of gauges cross without
+        // building a Python object per value.
+        const std::vector<double> sv = doubles_of(spots, 4, "spots"), mv = doubles_of(markers, 4, "markers");
         std::vector<Spot> sp;
-        sp.reserve(spots.size());
-        for (std::size_t i = 0; i < spots.size(); ++i) sp.push_back({{spots[i].first, spots[i].second}, std::int32_t(i)});
+        sp.reserve(sv.size() / 4);
+        for (std::size_t i = 0; i < sv.size() / 4; ++i)
+          sp.push_back({{sv[4 * i], sv[4 * i + 1]}, std::int32_t(i), std::int32_t(sv[4 * i + 2]), sv[4 * i + 3]});
+        auto tally = [](const Tally& t) {
+          py::list out;
+          for (int k = 0; k < kTypes; ++k) out.append(py::make_tuple(t.n[k], t.lo[k], t.hi[k]));
+          return out;
+        };
         std::vector<Box> mk;
-        mk.reserve(markers.size());
-        for (auto& m : markers) mk.push_back({m[0], m[1], m[2], m[3]});
+        mk.reserve(mv.size() / 4);
+        for (std::size_t i = 0; i < mv.size() / 4; ++i) mk.push_back({mv[4 * i], mv[4 * i + 1], mv[4 * i + 2], mv[4 * i + 3]});
         py::list out;
         for (const std::string& mode : modes) {
           if (mode != "A" && mode != "B" && mode != "C") throw py::value_error("mode must be A, B or C");
@@ -201,7 +221,9 @@ PYBIND11_MODULE(linf_opc_core, m) {
             r["side"] = side;
             r["windows"] = windows;
             r["used"] = s.used;
-            r["failed"] = s.failed;
+            r["failed"] = s.failed.size();
+            r["used_by_type"] = tally(s.used_by_type);
+            r["failed_by_type"] = tally(s.failed_by_type);
             r["redundant"] = s.redundant;
             r["traversed"] = s.traversed;
             r["covered"] = s.covered;
@@ -212,11 +234,12 @@ PYBIND11_MODULE(linf_opc_core, m) {
         return out;
       },
       py::arg("spots"), py::arg("markers"), py::arg("sides"), py::arg("modes"), py::arg("brute") = false,
-      "Pattern windows for every mode and side: spots [(x, y)] are gauge points in rank order, markers\n"
-      "[(x1, y1, x2, y2)], sides the window sides, modes among A (centre strictly inside), B (marker inside),\n"
+      "Pattern windows for every mode and side: spots = array('d') of x, y, type index 0-4, normalised score\n"
+      "per gauge in rank order; markers = array('d') of x1, y1, x2, y2 per marker; sides the window sides, modes among A (centre strictly inside), B (marker inside),\n"
       "C (overlap). Returns, modes outer and sides inner, [{'mode', 'side', 'windows': [(x1, y1, x2, y2,\n"
-      "spot index, [markers newly covered])], 'used', 'failed' (spot indices), 'redundant', 'traversed',\n"
-      "'covered', 'seconds'}]. brute=True: the brute-force oracle.");
+      "spot index, [markers newly covered])], 'used' (spot indices), 'failed' (count), 'used_by_type',\n"
+      "'failed_by_type' ([(count, lowest, highest normalised score)] per type index), 'redundant',\n"
+      "'traversed', 'covered', 'seconds'}]. brute=True: the brute-force oracle.");
 
   m.def(
       "cover_points",

@@ -37,6 +37,7 @@ Selection run(const std::vector<Spot>& ranked, std::size_t n_markers, double sid
     query(w, hit);
     if (hit.empty()) {
       s.failed.push_back(std::int32_t(i));
+      s.failed_by_type.add(ranked[i]);
       continue;
     }
     Window win;
@@ -51,11 +52,19 @@ Selection run(const std::vector<Spot>& ranked, std::size_t n_markers, double sid
     std::sort(win.markers.begin(), win.markers.end());
     s.covered += std::int32_t(win.markers.size());
     s.used.push_back(std::int32_t(i));
+    s.used_by_type.add(ranked[i]);
     s.windows.push_back(std::move(win));
   }
   return s;
 }
 }  // namespace
+
+void Tally::add(const Spot& s) {
+  const int t = std::clamp(s.type, 0, kTypes - 1);
+  lo[t] = n[t] ? std::min(lo[t], s.norm) : s.norm;
+  hi[t] = n[t] ? std::max(hi[t], s.norm) : s.norm;
+  ++n[t];
+}
 
 bool covers(const Box& w, const Box& m, Cover mode) {
   switch (mode) {

@@ -10,6 +10,7 @@
 //   failed    (G_f) if its window covers no marker at all;
 //   redundant      if its window covers only markers already covered: discarded, not failed.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -23,7 +24,18 @@ enum class Cover : std::uint8_t { Centre, Inside, Overlap };
 
 struct Spot {  // a gauge as the selection sees it
   Vec2 at;
-  std::int32_t id = -1;  // caller's gauge id
+  std::int32_t id = -1;   // caller's gauge id
+  std::int32_t type = 0;  // caller's type index, 0..kTypes-1, for the tallies
+  double norm = 0;        // normalised score, for the tallies
+};
+
+constexpr int kTypes = 5;
+
+// Count and normalised-score range of gauges per type (Tables 5.5, 5.6).
+struct Tally {
+  std::array<std::int32_t, kTypes> n{};
+  std::array<double, kTypes> lo{}, hi{};
+  void add(const Spot& s);
 };
 
 struct Window {
@@ -39,6 +51,7 @@ struct Selection {
   std::int32_t redundant = 0;
   std::int32_t traversed = 0;        // gauges looked at before every marker was covered
   std::int32_t covered = 0;          // M_c
+  Tally used_by_type, failed_by_type;
 };
 
 // Spatial queries go through a Boost.Geometry R-tree over the markers.

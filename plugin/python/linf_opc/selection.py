@@ -8,6 +8,7 @@ out: Study: one Run per (mode, size) with its windows and the columns of Tables 
 The selection itself runs in the core (an R-tree over the markers); this module counts.
 """
 import time
+from array import array
 
 from . import core
 
@@ -24,14 +25,17 @@ def pitch_of(gauges):
     return core.estimate_pitch(widths, spaces)
 
 
-def score_range(gs):
-    return [round(min(g.norm_score for g in gs), 6), round(max(g.norm_score for g in gs), 6)] if gs else None
+def by_type(tally, types):
+    """{type: {"n": count, "range": [lo, hi] of normalised scores}} (Tables 5.5, 5.6), from the
+    core's tally [(count, lo, hi)] per type index."""
+    return {t: {"n": n, "range": [round(lo, 6), round(hi, 6)] if n else None}
+            for t, (n, lo, hi) in zip(types, tally)}
 
 
-def by_type(gs, types):
-    """{type: {"n": count, "range": [lo, hi] of normalised scores}} (Tables 5.5, 5.6)."""
-    return {t: {"n": sum(1 for g in gs if g.type == t), "range": score_range([g for g in gs if g.type == t])}
-            for t in types}
+def overall(tally):
+    """[lo, hi] over all types of a tally, or None."""
+    live = [(lo, hi) for n, lo, hi in tally if n]
+    return [round(min(l for l, h in live), 6), round(max(h for l, h in live), 6)] if live else None
 
 
 def classes(gs, norm=None):
@@ -60,7 +64,9 @@ class Run:
         self.mode, self.size, self.side = mode, size, side
         self.windows = raw["windows"]  # (x1, y1, x2, y2, gauge index, [markers newly covered])
         self.used = [gauges[i] for i in raw["used"]]
-        self.failed = [gauges[i] for i in raw["failed"]]
+        self.n_failed = raw["failed"]
+        self.used_by_type = raw["used_by_type"]
+        self.failed_by_type = raw["failed_by_type"]
         self.redundant = raw["redundant"]
         self.traversed = raw["traversed"]
         self.covered = raw["covered"]
@@ -70,16 +76,16 @@ class Run:
 
     def row(self, dbu):
         """The columns of Tables 5.2-5.4 (T in seconds, the core's selection time)."""
-        gu, gf = len(self.used), len(self.failed)
+        gu, gf = len(self.used), self.n_failed
         return {"mode": self.mode, "W_s": "%dx%d" % (self.size, self.size), "side_um": round(self.side * dbu, 6),
-                "M_c": self.covered, "markers": self.n_markers, "G_u": gu, "r_u": score_range(self.used),
-                "G_f": gf, "r_f": score_range(self.failed), "redundant": self.redundant,
+                "M_c": self.covered, "markers": self.n_markers, "G_u": gu, "r_u": overall(self.used_by_type),
+                "G_f": gf, "r_f": overall(self.failed_by_type), "redundant": self.redundant,
                 "traversed": self.traversed,
                 "P_d": round(100.0 * self.covered / self.n_markers, 4) if self.n_markers else 0.0,
                 "u_g": round(100.0 * gu / (gu + gf), 4) if gu + gf else 0.0, "T": self.seconds}
 
     def distribution(self):
-        return {"used": by_type(self.used, self.types), "failed": by_type(self.failed, self.types)}
+        return {"used": by_type(self.used_by_type, self.types), "failed": by_type(self.failed_by_type, self.types)}
 
     def representatives(self):
         total = len(self.used)
@@ -106,8 +112,10 @@ def study(gauges, markers, pitch, sizes=SIZES, modes=MODES, types=("internal", "
     `seconds` covers the core's selections, the counting and the heuristic."""
     sizes, modes = list(sizes), list(modes)
     t0 = time.perf_counter()
-    spots = [(g.cx, g.cy) for g in gauges]
-    raw = core.select_windows(spots, markers, [k * pitch for k in sizes], list(modes))
+    index = {t: i for i, t in enumerate(types)}
+    spots = array("d", [v for g in gauges for v in (g.cx, g.cy, index[g.type], g.norm_score)])
+    boxes = array("d", [v for b in markers for v in b])
+    raw = core.select_windows(spots, boxes, [k * pitch for k in sizes], list(modes))
     runs = {}
     for i, r in enumerate(raw):
         m, k = modes[i // len(sizes)], sizes[i % len(sizes)]
