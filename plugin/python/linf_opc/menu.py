@@ -5,11 +5,16 @@ work itself is the same stage functions the batch macro calls.
 """
 import pya
 
+from . import batch
 from . import diagram as diagram_stage
+from . import dialogs
 from . import gauge_output
 from . import gauges as gauge_stage
 from . import layout as layer_io
+from . import markers as marker_io
 from . import output
+from . import selection as selection_stage
+from . import selection_output
 
 MENU = "tools_menu.linf_opc"
 TITLE = "L\u221e Voronoi OPC"
@@ -127,6 +132,47 @@ def gauges_of_current_layer():
     _run("Gauges", action)
 
 
+def select_patterns():
+    def action(progress):
+        mw, view, cv, info, polygons = _layer_polygons("Select patterns")
+        ly = cv.layout()
+        layers = ["%d/%d" % (i.layer, i.datatype) for i in (ly.get_info(k) for k in ly.layer_indexes())
+                  if not (i.layer == info.layer and i.datatype == info.datatype) and i.datatype < 200]
+        values = dialogs.ask_selection(layers, "Select patterns on %s" % info.to_s())
+        if values is None:
+            return
+        try:
+            sizes, modes, mode, size, pitch, _ = batch.select_args(dict(values, modes="A,B,C"), ly.dbu)
+            markers = marker_io.load(values["markers"], ly, cv.cell)
+        except (batch.UsageError, marker_io.MarkerError) as e:
+            _warn(str(e))
+            raise _Stop()
+        if not markers.boxes:
+            _warn("No markers in %s." % markers.source)
+            raise _Stop()
+        progress.inc()
+        result = gauge_stage.compute(polygons)
+        if pitch is None:
+            pitch = selection_stage.pitch_of(result.gauges)
+        if not pitch or pitch <= 0:
+            _warn("Cannot estimate the pitch of %s: give it in the dialog." % info.to_s())
+            raise _Stop()
+        st = selection_stage.study(result.gauges, markers.boxes, pitch, sizes, modes)
+        chosen = st.best(mode)
+        progress.inc()
+        _undoable(view, ly, "Pattern windows on %s" % info.to_s(),
+                  lambda: selection_output.add_layer(ly, cv.cell, chosen, info.layer, info.datatype))
+        index = view.create_rdb("patterns %s" % info.to_s())
+        selection_output.report(st, result.gauges, ly.dbu, cv.cell.name, view.rdb(index), markers)
+        view.show_rdb(index, view.active_cellview_index())
+        progress.inc()
+        row = chosen.row(ly.dbu)
+        mw.message("Patterns: mode %s %s (pitch %.4g um): %d windows cover %d of %d markers (P_d %.2f%%)"
+                   % (chosen.mode, row["W_s"], pitch * ly.dbu, len(chosen.windows), chosen.covered,
+                      len(markers.boxes), row["P_d"]), 10000)
+    _run("Select patterns", action)
+
+
 def register():
     menu = pya.Application.instance().main_window().menu()
     if menu.is_valid(MENU):
@@ -140,4 +186,8 @@ def register():
     gauges.title = "Suggest gauges on current layer"
     gauges.on_triggered(gauges_of_current_layer)
     menu.insert_item(MENU + ".end", "gauges", gauges)
-    register.actions = [action, gauges]  # keep the actions alive
+    select = pya.Action()
+    select.title = "Select patterns..."
+    select.on_triggered(select_patterns)
+    menu.insert_item(MENU + ".end", "select", select)
+    register.actions = [action, gauges, select]  # keep the actions alive
