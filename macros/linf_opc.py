@@ -12,5 +12,5 @@ if os.path.isdir(os.path.join(_repo, "plugin", "python", "linf_opc")):
 from linf_opc import batch  # noqa: E402
 
 _args = {k: globals().get(k) for k in ("cmd", "input", "layer", "cell", "out", "window", "markers", "sizes", "modes",
-                                     "mode", "size", "pitch", "halves")}
+                                     "mode", "size", "pitch", "halves", "max_norm")}
 sys.exit(batch.main(_args))

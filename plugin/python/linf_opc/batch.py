@@ -4,7 +4,7 @@
           [-rd cell=NAME] -rd out=DIR
   gauges: [-rd window=X1,Y1,X2,Y2] (um: the per-pattern mode)
   select: -rd markers=SPEC [-rd sizes=5,6,7,8] [-rd modes=A,B,C] [-rd mode=A] [-rd size=K]
-          [-rd pitch=UM] [-rd halves=0|1]
+          [-rd pitch=UM] [-rd max_norm=1] [-rd halves=0|1]
 
 Each command is a function of the parsed arguments returning a short summary line; later
 commands (gauges, select, split, farthest) register here the same way.
@@ -221,9 +221,16 @@ def cmd_select(args):
     d = out_dir(args)
     region, polygons, t_read = read_polygons(cell, index, layer, datatype)
     result = gauge_stage.compute(polygons)
-    gauges = result.gauges
+    try:
+        max_norm = float(args.get("max_norm") or 1)
+    except ValueError:
+        raise UsageError("max_norm must be a number, not %r" % args["max_norm"])
+    # Only gauges at most this critical (normalised score) open windows; 1 = every gauge.
+    gauges = [g for g in result.gauges if g.norm_score <= max_norm + 1e-12]
+    if not gauges:
+        raise UsageError("no gauge has a normalised score at or below max_norm=%g" % max_norm)
     if pitch is None:
-        pitch = selection_stage.pitch_of(gauges)
+        pitch = selection_stage.pitch_of(result.gauges)
         if pitch <= 0:
             raise UsageError("cannot estimate the pitch of layer %d/%d: give -rd pitch=UM" % (layer, datatype))
     st = selection_stage.study(gauges, markers.boxes, pitch, sizes, modes)
@@ -247,7 +254,7 @@ def cmd_select(args):
     res.write(os.path.join(d, "windows.oas"))
     stats = selection_output.stats(st, ly.dbu, chosen, sim)
     stats.update(input=os.path.abspath(args["input"]), cell=cell.name, layer="%d/%d" % (layer, datatype),
-                 gauges=len(gauges), marker_source=markers.summary(),
+                 gauges=len(gauges), max_norm=max_norm, marker_source=markers.summary(),
                  pitch_source="given" if args.get("pitch") else "estimated")
     stats["seconds"].update(read=t_read, gauges=result.seconds["total"], halves=t_halves)
     html_report.write(os.path.join(d, "report.html"), "Pattern selection: %s %d/%d" % (
