@@ -77,7 +77,7 @@ py::dict to_python(const Result& r) {
 
 py::tuple site_tuple(const Site& s) { return py::make_tuple(s.a.x, s.a.y, s.b.x, s.b.y); }
 
-py::dict gauges_to_python(const Result& r, const Gauges& g, double seconds_gauges) {
+py::dict gauges_to_python(const Result& r, const Gauges& g, double seconds_gauges, bool with_pieces) {
   const auto& S = r.diagram.sites.sites;
   py::list out;
   for (const Gauge& x : g.gauges) {
@@ -93,9 +93,9 @@ py::dict gauges_to_python(const Result& r, const Gauges& g, double seconds_gauge
     const char* k = kind_name(p.kind);
     counts[k] = counts[k].cast<long>() + 1;
   }
-  py::dict d = to_python_summary(r);
+  py::dict d = with_pieces ? to_python(r) : to_python_summary(r);
   d["counts"] = counts;
-  d["pieces"] = r.diagram.pieces.size();
+  if (!with_pieces) d["pieces"] = r.diagram.pieces.size();
   d["seconds"].cast<py::dict>()["gauges"] = seconds_gauges;
   py::dict res;
   res["gauges"] = out;
@@ -156,7 +156,8 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "gauges_polygons",
-      [](const PyPolygons& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit) {
+      [](const PyPolygons& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
+         bool with_pieces) {
         const std::vector<Polygon> in = polygons_of(polys);
         Result r;
         Gauges g;
@@ -171,15 +172,16 @@ PYBIND11_MODULE(linf_opc_core, m) {
           g = gauges_of(r.diagram, o);
           seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         }
-        return gauges_to_python(r, g, seconds);
+        return gauges_to_python(r, g, seconds, with_pieces);
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
-      py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0,
+      py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false,
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
       "Returns {'gauges': [(type, x1, y1, x2, y2, cx, cy, cd, score, norm_score, tiebreak, rank, teeth,\n"
       "(a_x1, a_y1, a_x2, a_y2), (b_x1, b_y1, b_x2, b_y2), site_a, site_b, [stretch path (x, y)])] in rank order, 'stretches': n,\n"
       "'typical_width', 'space_limit', 'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}.\n"
-      "DBU throughout. space_limit_widths: spaces wider than this many typical widths are not pattern (0: keep all).");
+      "DBU throughout. space_limit_widths: spaces wider than this many typical widths are not pattern (0: keep all).\n"
+      "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them.");
 
   m.def(
       "select_windows",
@@ -222,6 +224,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
             r["windows"] = windows;
             r["used"] = s.used;
             r["failed"] = s.failed.size();
+            r["failed_spots"] = s.failed;
             r["used_by_type"] = tally(s.used_by_type);
             r["failed_by_type"] = tally(s.failed_by_type);
             r["redundant"] = s.redundant;
@@ -237,7 +240,8 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "Pattern windows for every mode and side: spots = array('d') of x, y, type index 0-4, normalised score\n"
       "per gauge in rank order; markers = array('d') of x1, y1, x2, y2 per marker; sides the window sides, modes among A (centre strictly inside), B (marker inside),\n"
       "C (overlap). Returns, modes outer and sides inner, [{'mode', 'side', 'windows': [(x1, y1, x2, y2,\n"
-      "spot index, [markers newly covered])], 'used' (spot indices), 'failed' (count), 'used_by_type',\n"
+      "spot index, [markers newly covered])], 'used' (spot indices), 'failed' (count), 'failed_spots'\n"
+      "(spot indices), 'used_by_type',\n"
       "'failed_by_type' ([(count, lowest, highest normalised score)] per type index), 'redundant',\n"
       "'traversed', 'covered', 'seconds'}]. brute=True: the brute-force oracle.");
 

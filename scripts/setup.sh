@@ -9,7 +9,8 @@ home="${KLAYOUT_HOME:-$HOME/.klayout}"
 cmake --install build --prefix "$home/salt/linf_opc" > /dev/null
 echo "installed the KLayout package in $home/salt/linf_opc (menu: Tools > L-inf Voronoi OPC)"
 out="${1:-out/sample}"
-klayout -b -r macros/linf_opc.py -rd cmd=voronoi -rd input=samples/metal.oas -rd layer=1/0 -rd out="$out"
-klayout -b -r macros/linf_opc.py -rd cmd=gauges -rd input=samples/metal.oas -rd layer=1/0 -rd out="$out"
-echo "open the results with: klayout $out/voronoi.oas   or, with the gauges in the marker browser:"
-echo "  klayout $out/gauges.oas -m $out/gauges.lyrdb"
+# The main job: the whole flow (diagram, gauges, pattern selection against the sample's
+# markers on 100/0, calibration/verification split) on the sample's metal layer.
+klayout -b -r macros/linf_opc.py -rd cmd=flow -rd input=samples/metal.oas -rd layer=1/0 -rd markers=100/0 -rd out="$out"
+echo "open the results with: klayout $out/windows.oas -m $out/flow.lyrdb   (report: $out/report.html;"
+echo "  clip libraries: $out/calibration.oas, $out/verification.oas)"

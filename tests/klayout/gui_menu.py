@@ -239,6 +239,63 @@ def select_step():
             mw.cm_undo()
             li = ly.find_layer(L, 220)
             expect(li is None or cell.shapes(li).size() == 0, "undo removes the windows")
+        later(500, flow_step)
+        return
+    except Exception as e:
+        expect(False, "exception: %s" % e)
+    finish()
+
+
+def fill_flow_dialog():
+    import linf_opc.dialogs as dialogs
+    d = dialogs.current
+    expect(d is not None, "the flow dialog is open")
+    if d is None:
+        return
+    d.layer.currentIndex = d.layer.findText(g["layer"])
+    d.markers.setEditText(g["markers"])
+    d.sizes.text = "5,6"
+    d.split.currentIndex = 0
+    d.fraction.text = "0.3"
+    d.out.text = state["flow_out"]
+    state["flow_shot"] = d.grab().save(os.path.splitext(g["shot"])[0] + "_flow_dialog.png")
+    d.accept()
+
+
+def check_remembered():
+    """The dialog opens again with the values of the last run; cancelling it does nothing."""
+    import linf_opc.dialogs as dialogs
+    d = dialogs.current
+    expect(d is not None and d.markers.currentText == g["markers"] and d.sizes.text == "5,6"
+           and d.out.text == state["flow_out"], "the flow dialog remembers its settings")
+    if d is not None:
+        d.reject()
+
+
+def flow_step():
+    """Run OPC pattern flow...: the dialog, every output file, the windows, the marker browser;
+    then the dialog again with the remembered settings."""
+    try:
+        import tempfile
+        view, ly, cell = state["view"], state["ly"], state["cell"]
+        state["flow_out"] = tempfile.mkdtemp(prefix="linf_flow_")
+        expect(mw.menu().is_valid("tools_menu.linf_opc.flow"), "flow menu entry registered")
+        expected_dialog.append("Run OPC pattern flow")
+        later(700, fill_flow_dialog)
+        rdbs = view.num_rdbs()
+        mw.menu().action("tools_menu.linf_opc.flow").trigger()
+        files = sorted(os.listdir(state["flow_out"]))
+        say("flow outputs: %s" % files)
+        expect({"voronoi.csv", "gauges.csv", "windows.csv", "report.html", "calibration.oas", "verification.oas",
+                "split.json", "flow.lyrdb"} <= set(files), "the flow wrote every stage's files")
+        li = ly.find_layer(L, 220)
+        expect(li is not None and cell.shapes(li).size() > 0, "the flow drew the windows")
+        expect(view.num_rdbs() == rdbs + 1, "the flow's report database is in the marker browser")
+        expect(state.get("flow_shot") is True, "flow dialog screenshot saved")
+        later(700, check_remembered)
+        mw.menu().action("tools_menu.linf_opc.flow").trigger()
+        expected_dialog.pop()
+        expect(view.num_rdbs() == rdbs + 1, "cancelling the dialog runs nothing")
     except Exception as e:
         expect(False, "exception: %s" % e)
     finish()

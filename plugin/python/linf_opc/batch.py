@@ -1,13 +1,17 @@
 """The batch entry point behind macros/linf_opc.py.
 
-  klayout -b -r macros/linf_opc.py -rd cmd=voronoi|gauges|select -rd input=FILE -rd layer=L/D
-          [-rd cell=NAME] -rd out=DIR
-  gauges: [-rd window=X1,Y1,X2,Y2] (um: the per-pattern mode)
-  select: -rd markers=SPEC [-rd sizes=5,6,7,8] [-rd modes=A,B,C] [-rd mode=A] [-rd size=K]
-          [-rd pitch=UM] [-rd max_norm=1] [-rd halves=0|1]
+  klayout -b -r macros/linf_opc.py -rd cmd=COMMAND -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd out=DIR
+  voronoi  the diagram: voronoi.csv, voronoi.oas, summary.json
+  gauges   [-rd window=X1,Y1,X2,Y2] (um: the per-pattern mode): gauges.csv, gauges.lyrdb, gauges.oas, summary.json
+  select   -rd markers=SPEC [-rd sizes=5,6,7,8] [-rd modes=A,B,C] [-rd mode=A] [-rd size=K] [-rd pitch=UM]
+           [-rd max_norm=1] [-rd halves=0|1]: windows.csv, windows.lyrdb, windows.oas, stats.json, report.html
+  split    the select arguments and [-rd split=stratified|threshold] [-rd fraction=0.3] [-rd seed=1]
+           [-rd threshold=0.1] [-rd bin=0.025]: the select outputs, calibration.oas, verification.oas,
+           calibration_gauges.csv, verification_gauges.csv, split.json (windows.lyrdb items tagged)
+  flow     voronoi -> gauges -> select -> split in one run, every output above, summary.json
 
-Each command is a function of the parsed arguments returning a short summary line; later
-commands (gauges, select, split, farthest) register here the same way.
+Each command is a function of the parsed arguments returning a short summary line; the stages
+are the same functions the editor's menu calls.
 """
 import os
 import sys
@@ -15,6 +19,7 @@ import time
 
 import pya
 
+from . import clips
 from . import diagram as diagram_stage
 from . import gauge_output
 from . import gauges as gauge_stage
@@ -24,6 +29,7 @@ from . import output
 from . import report as html_report
 from . import selection as selection_stage
 from . import selection_output
+from . import split as split_stage
 
 
 class UsageError(Exception):
@@ -63,18 +69,48 @@ def out_dir(args):
     d = args.get("out")
     if not d:
         raise UsageError("missing -rd out=DIR")
-    os.makedirs(d, exist_ok=True)
+    try:
+        os.makedirs(d, exist_ok=True)
+    except OSError as e:
+        raise UsageError("cannot create the output folder %s: %s" % (d, e.strerror))
     return d
 
 
-def read_polygons(cell, index, layer, datatype):
-    """(merged region, polygons, seconds) of the layer; an empty layer is a usage error."""
-    t0 = time.perf_counter()
-    region = layer_io.region_of(cell, index)
-    polygons = layer_io.polygons_of(region)
-    if not polygons:
-        raise UsageError("layer %d/%d is empty in cell %s" % (layer, datatype, cell.name))
-    return region, polygons, time.perf_counter() - t0
+class Input:
+    """The layer to work on: layout, cell, layer, its merged region and polygons, the out dir.
+    The batch builds it from its arguments (from_args), the editor from the current view."""
+    def __init__(self, ly, cell, index, path, out):
+        self.ly, self.cell, self.index = ly, cell, index
+        info = ly.get_info(index)
+        self.layer, self.datatype = info.layer, info.datatype
+        self.path = os.path.abspath(path) if path else ""
+        self.dir = out_dir({"out": out})
+        t0 = time.perf_counter()
+        self.region = layer_io.region_of(self.cell, self.index)
+        self.polygons = layer_io.polygons_of(self.region)
+        if not self.polygons:
+            raise UsageError("layer %d/%d is empty in cell %s" % (self.layer, self.datatype, self.cell.name))
+        self.t_read = time.perf_counter() - t0
+        self.dbu = self.ly.dbu
+        self.name = "%d/%d" % (self.layer, self.datatype)
+
+    @classmethod
+    def from_args(cls, args):
+        ly, cell, index, _ = load(args)
+        if not args.get("out"):
+            raise UsageError("missing -rd out=DIR")
+        return cls(ly, cell, index, args["input"], args["out"])
+
+    def file(self, name):
+        return os.path.join(self.dir, name)
+
+    def result_layout(self):
+        """A layout with one top cell holding the merged input layer, to add result layers to."""
+        res = pya.Layout()
+        res.dbu = self.dbu
+        top = res.create_cell(self.cell.name)
+        top.shapes(res.insert_layer(pya.LayerInfo(self.layer, self.datatype))).insert(self.region)
+        return res, top
 
 
 def parse_window(text, dbu):
@@ -86,64 +122,67 @@ def parse_window(text, dbu):
     return min(x1, x2), min(y1, y2), max(x1, x2), max(y1, y2)
 
 
-def cmd_voronoi(args):
-    ly, cell, index, (layer, datatype) = load(args)
-    d = out_dir(args)
-    region, polygons, t_read = read_polygons(cell, index, layer, datatype)
-    diagram = diagram_stage.compute(polygons)
+def write_voronoi(inp, diagram):
     t0 = time.perf_counter()
-    output.write_csv(diagram, os.path.join(d, "voronoi.csv"), ly.dbu)
-    # voronoi.oas: the input layer (flattened, merged) and the diagram layers, in one top cell.
-    res = pya.Layout()
-    res.dbu = ly.dbu
-    top = res.create_cell(cell.name)
-    top.shapes(res.insert_layer(pya.LayerInfo(layer, datatype))).insert(region)
-    drawn = output.add_layers(res, top, diagram, layer, datatype)
-    res.write(os.path.join(d, "voronoi.oas"))
-    t_write = time.perf_counter() - t0
-    s = output.summary(diagram, ly.dbu, input=os.path.abspath(args["input"]), cell=cell.name,
-                       layer="%d/%d" % (layer, datatype), polygons=len(polygons), drawn=drawn)
-    s["seconds"].update(read=t_read, write=t_write)
-    output.write_json(s, os.path.join(d, "summary.json"))
+    output.write_csv(diagram, inp.file("voronoi.csv"), inp.dbu)
+    res, top = inp.result_layout()
+    drawn = output.add_layers(res, top, diagram, inp.layer, inp.datatype)
+    res.write(inp.file("voronoi.oas"))
+    s = output.summary(diagram, inp.dbu, input=inp.path, cell=inp.cell.name, layer=inp.name,
+                       polygons=len(inp.polygons), drawn=drawn)
+    s["seconds"].update(read=inp.t_read, write=time.perf_counter() - t0)
+    return s
+
+
+def voronoi_line(s, d):
     c = s["counts"]
     return ("voronoi: %d polygons, %d sites -> %d pieces (internal %d, external %d, notch %d, adjacent %d), "
-            "checked, %.2f s; outputs in %s" % (len(polygons), diagram.sites, len(diagram.pieces), c["internal"],
-                                               c["external"], c["notch"], c["adjacent"], diagram.seconds["total"],
+            "checked, %.2f s; outputs in %s" % (s["polygons"], s["sites"], s["pieces"], c["internal"],
+                                               c["external"], c["notch"], c["adjacent"], s["seconds"]["total"],
                                                os.path.abspath(d)))
 
 
-def cmd_gauges(args):
-    ly, cell, index, (layer, datatype) = load(args)
-    window = parse_window(args["window"], ly.dbu) if args.get("window") else None
-    d = out_dir(args)
-    region, polygons, t_read = read_polygons(cell, index, layer, datatype)
-    result = gauge_stage.compute(polygons)
-    gauges = result.gauges if window is None else gauge_stage.most_critical_in(result.gauges, window)
+def write_gauges(inp, result, gauges, window=None):
     t0 = time.perf_counter()
-    gauge_output.write_csv(gauges, os.path.join(d, "gauges.csv"), ly.dbu)
-    gauge_output.report(gauges, ly.dbu, cell.name, os.path.abspath(args["input"])).save(
-        os.path.join(d, "gauges.lyrdb"))
-    res = pya.Layout()
-    res.dbu = ly.dbu
-    top = res.create_cell(cell.name)
-    top.shapes(res.insert_layer(pya.LayerInfo(layer, datatype))).insert(region)
-    gauge_output.add_layer(res, top, gauges, layer, datatype)
-    res.write(os.path.join(d, "gauges.oas"))
-    t_write = time.perf_counter() - t0
-    s = gauge_output.summary(result, ly.dbu)
-    s.update(input=os.path.abspath(args["input"]), cell=cell.name, layer="%d/%d" % (layer, datatype),
-             polygons=len(polygons), dbu=round(ly.dbu, 12), written=len(gauges))
+    gauge_output.write_csv(gauges, inp.file("gauges.csv"), inp.dbu)
+    gauge_output.report(gauges, inp.dbu, inp.cell.name, inp.path).save(inp.file("gauges.lyrdb"))
+    res, top = inp.result_layout()
+    gauge_output.add_layer(res, top, gauges, inp.layer, inp.datatype)
+    res.write(inp.file("gauges.oas"))
+    s = gauge_output.summary(result, inp.dbu)
+    s.update(input=inp.path, cell=inp.cell.name, layer=inp.name, polygons=len(inp.polygons),
+             dbu=round(inp.dbu, 12), written=len(gauges))
     if window is not None:
-        s["window_um"] = [round(v * ly.dbu, 9) for v in window]
-    s["seconds"].update(read=t_read, write=t_write)
-    output.write_json(s, os.path.join(d, "summary.json"))
+        s["window_um"] = [round(v * inp.dbu, 9) for v in window]
+    s["seconds"].update(read=inp.t_read, write=time.perf_counter() - t0)
+    return s
+
+
+def gauges_line(s, gauges, dbu, d):
     c = s["counts"]
-    best = ", ".join("%s %s" % (g.type, "%.4g" % (g.cd * ly.dbu)) for g in gauges[:3])
+    best = ", ".join("%s %s" % (g.type, "%.4g" % (g.cd * dbu)) for g in gauges[:3])
     return ("gauges: %d polygons -> %d gauges (internal %d, external %d, sandwich %d, comb %d, T %d)%s; "
             "most critical: %s; %.2f s; outputs in %s"
-            % (len(polygons), len(result.gauges), c["internal"], c["external"], c["sandwich"], c["comb"], c["T"],
-               "" if window is None else ", %d in the window" % len(gauges), best or "none",
-               result.seconds["total"], os.path.abspath(d)))
+            % (s["polygons"], s["gauges"], c["internal"], c["external"], c["sandwich"], c["comb"], c["T"],
+               "" if "window_um" not in s else ", %d in the window" % s["written"], best or "none",
+               s["seconds"]["total"], os.path.abspath(d)))
+
+
+def cmd_voronoi(args):
+    inp = Input.from_args(args)
+    s = write_voronoi(inp, diagram_stage.compute(inp.polygons))
+    output.write_json(s, inp.file("summary.json"))
+    return voronoi_line(s, inp.dir)
+
+
+def cmd_gauges(args):
+    inp = Input.from_args(args)
+    window = parse_window(args["window"], inp.dbu) if args.get("window") else None
+    result = gauge_stage.compute(inp.polygons)
+    gauges = result.gauges if window is None else gauge_stage.most_critical_in(result.gauges, window)
+    s = write_gauges(inp, result, gauges, window)
+    output.write_json(s, inp.file("summary.json"))
+    return gauges_line(s, gauges, inp.dbu, inp.dir)
 
 
 def _ints(text, name):
@@ -209,67 +248,179 @@ def halves_similarity(region, markers, pitch, size, dbu):
             "S_12": round(selection_stage.similarity(c1, c2), 4)}
 
 
-def cmd_select(args):
-    ly, cell, index, (layer, datatype) = load(args)
-    sizes, modes, mode, size, pitch, halves = select_args(args, ly.dbu)
-    try:
-        markers = marker_io.load(args.get("markers"), ly, cell)
-    except marker_io.MarkerError as e:
-        raise UsageError(str(e))
-    if not markers.boxes:
-        raise UsageError("no markers in %s" % markers.source)
-    d = out_dir(args)
-    region, polygons, t_read = read_polygons(cell, index, layer, datatype)
-    result = gauge_stage.compute(polygons)
-    try:
-        max_norm = float(args.get("max_norm") or 1)
-    except ValueError:
-        raise UsageError("max_norm must be a number, not %r" % args["max_norm"])
-    # Only gauges at most this critical (normalised score) open windows; 1 = every gauge.
-    gauges = [g for g in result.gauges if g.norm_score <= max_norm + 1e-12]
-    if not gauges:
-        raise UsageError("no gauge has a normalised score at or below max_norm=%g" % max_norm)
-    if pitch is None:
-        pitch = selection_stage.pitch_of(result.gauges)
-        if pitch <= 0:
-            raise UsageError("cannot estimate the pitch of layer %d/%d: give -rd pitch=UM" % (layer, datatype))
-    st = selection_stage.study(gauges, markers.boxes, pitch, sizes, modes)
-    chosen = st.runs[(mode, size)] if size else st.best(mode)
+class Selected:
+    """What the selection produced, for writing and for the split."""
+    def __init__(self, inp, args, result):
+        sizes, modes, mode, size, pitch, halves = select_args(args, inp.dbu)
+        try:
+            self.markers = marker_io.load(args.get("markers"), inp.ly, inp.cell)
+        except marker_io.MarkerError as e:
+            raise UsageError(str(e))
+        if not self.markers.boxes:
+            raise UsageError("no markers in %s" % self.markers.source)
+        try:
+            self.max_norm = float(args.get("max_norm") or 1)
+        except ValueError:
+            raise UsageError("max_norm must be a number, not %r" % args["max_norm"])
+        # Only gauges at most this critical (normalised score) open windows; 1 = every gauge.
+        self.gauges = [g for g in result.gauges if g.norm_score <= self.max_norm + 1e-12]
+        if not self.gauges:
+            raise UsageError("no gauge has a normalised score at or below max_norm=%g" % self.max_norm)
+        self.pitch_given = pitch is not None
+        if pitch is None:
+            pitch = selection_stage.pitch_of(result.gauges)
+            if pitch <= 0:
+                raise UsageError("cannot estimate the pitch of layer %s: give -rd pitch=UM" % inp.name)
+        self.pitch = pitch
+        self.study = selection_stage.study(self.gauges, self.markers.boxes, pitch, sizes, modes)
+        self.chosen = self.study.runs[(mode, size)] if size else self.study.best(mode)
+        t0 = time.perf_counter()
+        self.similarity = halves_similarity(inp.region, self.markers.boxes, pitch, 7 if 7 in sizes else sizes[-1],
+                                            inp.dbu) if halves else None
+        self.t_halves = time.perf_counter() - t0
+        self.result = result
+
+
+def write_selection(inp, sel, rdb):
+    """windows.csv, windows.oas, stats.json, report.html; fills rdb (saved by the caller)."""
     t0 = time.perf_counter()
-    sim = halves_similarity(region, markers.boxes, pitch, 7 if 7 in sizes else sizes[-1], ly.dbu) if halves else None
-    t_halves = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    selection_output.write_csv(chosen, gauges, os.path.join(d, "windows.csv"), ly.dbu)
-    rdb = pya.ReportDatabase("patterns")
-    rdb.generator = "linf_opc select"
-    rdb.original_file = os.path.abspath(args["input"])
-    rdb.top_cell_name = cell.name
-    selection_output.report(st, gauges, ly.dbu, cell.name, rdb, markers)
-    rdb.save(os.path.join(d, "windows.lyrdb"))
-    res = pya.Layout()
-    res.dbu = ly.dbu
-    top = res.create_cell(cell.name)
-    top.shapes(res.insert_layer(pya.LayerInfo(layer, datatype))).insert(region)
-    selection_output.add_layer(res, top, chosen, layer, datatype)
-    res.write(os.path.join(d, "windows.oas"))
-    stats = selection_output.stats(st, ly.dbu, chosen, sim)
-    stats.update(input=os.path.abspath(args["input"]), cell=cell.name, layer="%d/%d" % (layer, datatype),
-                 gauges=len(gauges), max_norm=max_norm, marker_source=markers.summary(),
-                 pitch_source="given" if args.get("pitch") else "estimated")
-    stats["seconds"].update(read=t_read, gauges=result.seconds["total"], halves=t_halves)
-    html_report.write(os.path.join(d, "report.html"), "Pattern selection: %s %d/%d" % (
-        os.path.basename(args["input"]), layer, datatype), stats, st, polygons, ly.dbu)
+    selection_output.write_csv(sel.chosen, sel.gauges, inp.file("windows.csv"), inp.dbu)
+    selection_output.report(sel.study, sel.gauges, inp.dbu, inp.cell.name, rdb, sel.markers)
+    res, top = inp.result_layout()
+    selection_output.add_layer(res, top, sel.chosen, inp.layer, inp.datatype)
+    res.write(inp.file("windows.oas"))
+    stats = selection_output.stats(sel.study, inp.dbu, sel.chosen, sel.similarity)
+    stats.update(input=inp.path, cell=inp.cell.name, layer=inp.name, gauges=len(sel.gauges), max_norm=sel.max_norm,
+                 marker_source=sel.markers.summary(), pitch_source="given" if sel.pitch_given else "estimated")
+    stats["seconds"].update(read=inp.t_read, gauges=sel.result.seconds["total"], halves=sel.t_halves)
+    html_report.write(inp.file("report.html"), "Pattern selection: %s %s" % (os.path.basename(inp.path), inp.name),
+                      stats, sel.study, inp.polygons, inp.dbu)
     stats["seconds"]["write"] = time.perf_counter() - t0
-    output.write_json(stats, os.path.join(d, "stats.json"))
-    row = chosen.row(ly.dbu)
+    output.write_json(stats, inp.file("stats.json"))
+    return stats
+
+
+def new_rdb(inp, generator):
+    rdb = pya.ReportDatabase("patterns")
+    rdb.generator = generator
+    rdb.original_file = inp.path
+    rdb.top_cell_name = inp.cell.name
+    return rdb
+
+
+def select_line(sel, dbu, d):
+    row = sel.chosen.row(dbu)
     return ("select: %d markers (%s), pitch %.4g um, %d gauges; mode %s %s: %d windows cover %d markers "
             "(P_d %.2f%%, u_g %.2f%%); %d size/mode runs in %.2f s%s; outputs in %s"
-            % (len(markers.boxes), markers.source, pitch * ly.dbu, len(gauges), chosen.mode, row["W_s"],
-               len(chosen.windows), chosen.covered, row["P_d"], row["u_g"], len(st.runs), st.seconds,
-               "; halves S_12 %.1f%%" % sim["S_12"] if sim else "", os.path.abspath(d)))
+            % (len(sel.markers.boxes), sel.markers.source, sel.pitch * dbu, len(sel.gauges), sel.chosen.mode,
+               row["W_s"], len(sel.chosen.windows), sel.chosen.covered, row["P_d"], row["u_g"], len(sel.study.runs),
+               sel.study.seconds, "; halves S_12 %.1f%%" % sel.similarity["S_12"] if sel.similarity else "",
+               os.path.abspath(d)))
 
 
-COMMANDS = {"voronoi": cmd_voronoi, "gauges": cmd_gauges, "select": cmd_select}
+def cmd_select(args):
+    inp = Input.from_args(args)
+    sel = Selected(inp, args, gauge_stage.compute(inp.polygons))
+    rdb = new_rdb(inp, "linf_opc select")
+    write_selection(inp, sel, rdb)
+    rdb.save(inp.file("windows.lyrdb"))
+    return select_line(sel, inp.dbu, inp.dir)
+
+
+def _number(args, key, default, kind=float):
+    try:
+        return kind(args.get(key) or default)
+    except ValueError:
+        raise UsageError("%s must be a number, not %r" % (key, args[key]))
+
+
+def split_of(args, sel):
+    """The Split of the chosen selection run, by -rd split=stratified (default) or threshold."""
+    patterns = split_stage.patterns_of(sel.chosen, sel.gauges, sel.markers.boxes)
+    mode = (args.get("split") or "stratified").lower()
+    bin_width = _number(args, "bin", 0.025)
+    if bin_width <= 0:
+        raise UsageError("bin must be positive")
+    if mode == "threshold":
+        return split_stage.by_threshold(patterns, _number(args, "threshold", 0.1), bin_width)
+    if mode == "stratified":
+        fraction = _number(args, "fraction", 0.3)
+        if not 0 < fraction < 1:
+            raise UsageError("fraction must lie between 0 and 1, not %g" % fraction)
+        return split_stage.stratified(patterns, fraction, _number(args, "seed", 1, int), bin_width)
+    raise UsageError("split must be stratified or threshold, not %r" % args.get("split"))
+
+
+def write_split(inp, split, rdb):
+    """The two clip libraries, the two gauge lists, split.json; tags the rdb's split items."""
+    names = {}
+    for which in split_stage.SETS:
+        members = split.members(which)
+        names[which] = clips.write_library(inp.file("%s.oas" % which), which, members, inp.region, inp.layer,
+                                           inp.datatype, inp.dbu)
+        gauge_output.write_csv([p.gauge for p in members], inp.file("%s_gauges.csv" % which), inp.dbu)
+    selection_output.report_split(split, inp.dbu, inp.cell.name, rdb)
+    s = split.summary()
+    output.write_json(s, inp.file("split.json"))
+    return s
+
+
+def split_line(s, d):
+    return ("split (%s): %d patterns (%d cover markers) -> calibration %d, verification %d; %d classes; "
+            "outputs in %s" % (s["mode"], s["patterns"], s["covering_markers"], s["counts"]["calibration"],
+                               s["counts"]["verification"], len(s["classes"]), os.path.abspath(d)))
+
+
+def cmd_split(args):
+    inp = Input.from_args(args)
+    sel = Selected(inp, args, gauge_stage.compute(inp.polygons))
+    split = split_of(args, sel)
+    rdb = new_rdb(inp, "linf_opc split")
+    write_selection(inp, sel, rdb)
+    s = write_split(inp, split, rdb)
+    rdb.save(inp.file("windows.lyrdb"))
+    return select_line(sel, inp.dbu, inp.dir) + "\n" + split_line(s, inp.dir)
+
+
+def flow(inp, args, progress=None):
+    """voronoi -> gauges -> select -> split on `inp`, the diagram built once; writes every
+    output into inp.dir. `progress(stage)` is called between stages (the editor's progress bar,
+    whose cancel raises). Returns (summary line, rdb, chosen selection run)."""
+    step = progress or (lambda stage: None)
+    step("diagram and gauges")
+    result = gauge_stage.compute(inp.polygons, with_diagram=True)
+    step("writing the diagram and the gauges")
+    sv = write_voronoi(inp, result.pieces_diagram)
+    sg = write_gauges(inp, result, result.gauges)
+    step("pattern selection")
+    sel = Selected(inp, args, result)
+    step("split")
+    split = split_of(args, sel)
+    rdb = new_rdb(inp, "linf_opc flow")
+    gauge_output.report(result.gauges, inp.dbu, inp.cell.name, inp.path, rdb)
+    stats = write_selection(inp, sel, rdb)
+    ss = write_split(inp, split, rdb)
+    rdb.save(inp.file("flow.lyrdb"))
+    output.write_json({"voronoi": sv, "gauges": sg, "select": {k: stats[k] for k in ("pitch_um", "markers", "chosen")},
+                       "split": {k: ss[k] for k in ("mode", "patterns", "counts")}}, inp.file("summary.json"))
+    row = sel.chosen.row(inp.dbu)
+    c = sg["counts"]
+    line = ("flow on %s %s: %d polygons; diagram %d pieces, checked; gauges %d (internal %d, external %d, "
+            "sandwich %d, comb %d, T %d); markers covered %d of %d (mode %s %s, %d windows); patterns: "
+            "calibration %d, verification %d; outputs in %s"
+            % (os.path.basename(inp.path) or inp.cell.name, inp.name, len(inp.polygons), sv["pieces"], sg["gauges"],
+               c["internal"], c["external"], c["sandwich"], c["comb"], c["T"], sel.chosen.covered,
+               len(sel.markers.boxes), sel.chosen.mode, row["W_s"], len(sel.chosen.windows),
+               ss["counts"]["calibration"], ss["counts"]["verification"], os.path.abspath(inp.dir)))
+    return line, rdb, sel.chosen
+
+
+def cmd_flow(args):
+    return flow(Input.from_args(args), args)[0]
+
+
+COMMANDS = {"voronoi": cmd_voronoi, "gauges": cmd_gauges, "select": cmd_select, "split": cmd_split,
+            "flow": cmd_flow}
 
 
 def main(args):

@@ -1,4 +1,7 @@
 """Dialogs, built with KLayout's Qt bindings."""
+import json
+import os
+
 import pya
 
 from .selection import MODE_NAMES
@@ -61,6 +64,130 @@ def ask_selection(layers, title):
     current = d
     try:
         return d.values() if d.exec_() else None
+    finally:
+        current = None
+        d._destroy()
+
+
+def _settings_path():
+    return os.path.join(pya.Application.instance().application_data_path(), "linf_opc_flow.json")
+
+
+def load_settings():
+    """The flow dialog's last values (kept in KLayout's home folder), or {}."""
+    try:
+        with open(_settings_path()) as f:
+            v = json.load(f)
+        return v if isinstance(v, dict) else {}
+    except (OSError, ValueError):
+        return {}
+
+
+def save_settings(values):
+    try:
+        with open(_settings_path(), "w") as f:
+            json.dump(values, f, indent=1, sort_keys=True)
+    except OSError:
+        pass  # settings are a convenience: never fail the flow for them
+
+
+class FlowDialog(pya.QDialog):
+    """The whole flow: layer, markers, window sizes, coverage mode, split mode and ratio, output folder."""
+
+    def __init__(self, parent, layers, current_layer, settings, title):
+        super().__init__(parent)
+        self.windowTitle = title
+        form = pya.QFormLayout(self)
+        self.layer = pya.QComboBox(self)
+        for name in layers:
+            self.layer.addItem(name)
+        self._select(self.layer, current_layer or settings.get("layer", ""))
+        form.addRow("Layer", self.layer)
+        row = pya.QWidget(self)
+        line = pya.QHBoxLayout(row)
+        line.setContentsMargins(0, 0, 0, 0)
+        self.markers = pya.QComboBox(row)
+        self.markers.editable = True
+        self.markers.minimumContentsLength = 30
+        for name in layers:
+            self.markers.addItem(name)
+        self.markers.setEditText(settings.get("markers", ""))
+        browse = pya.QPushButton("File...", row)
+        browse.clicked = self._browse_markers
+        line.addWidget(self.markers)
+        line.addWidget(browse)
+        form.addRow("Markers (layer L/D, .csv, .lyrdb)", row)
+        self.sizes = pya.QLineEdit(settings.get("sizes", "5,6,7,8"), self)
+        form.addRow("Window sizes (pitches)", self.sizes)
+        self.mode = pya.QComboBox(self)
+        for m in ("A", "B", "C"):
+            self.mode.addItem("%s: %s" % (m, MODE_NAMES[m]))
+        self.mode.currentIndex = "ABC".find(settings.get("mode", "A")) if settings.get("mode", "A") in "ABC" else 0
+        form.addRow("Coverage mode", self.mode)
+        self.split = pya.QComboBox(self)
+        self.split.addItem("stratified hold-out")
+        self.split.addItem("score threshold")
+        self.split.currentIndex = 1 if settings.get("split") == "threshold" else 0
+        form.addRow("Split", self.split)
+        self.fraction = pya.QLineEdit(settings.get("fraction", "0.3"), self)
+        form.addRow("Verification fraction (stratified)", self.fraction)
+        self.threshold = pya.QLineEdit(settings.get("threshold", "0.1"), self)
+        form.addRow("Normalised score threshold", self.threshold)
+        self.seed = pya.QLineEdit(settings.get("seed", "1"), self)
+        form.addRow("Seed", self.seed)
+        row = pya.QWidget(self)
+        line = pya.QHBoxLayout(row)
+        line.setContentsMargins(0, 0, 0, 0)
+        self.out = pya.QLineEdit(settings.get("out", os.path.join(os.path.expanduser("~"), "linf_opc_flow")), row)
+        pick = pya.QPushButton("Browse...", row)
+        pick.clicked = self._browse_out
+        line.addWidget(self.out)
+        line.addWidget(pick)
+        form.addRow("Output folder", row)
+        buttons = pya.QDialogButtonBox(self)
+        buttons.addButton(pya.QDialogButtonBox.Ok)
+        buttons.addButton(pya.QDialogButtonBox.Cancel)
+        buttons.accepted = self.accept
+        buttons.rejected = self.reject
+        form.addRow(buttons)
+
+    @staticmethod
+    def _select(combo, text):
+        i = combo.findText(text)
+        if i >= 0:
+            combo.currentIndex = i
+
+    def _browse_markers(self):
+        path = pya.QFileDialog.getOpenFileName(self, "Marker file", "", "Markers (*.csv *.lyrdb *.rdb);;All (*)")
+        if path:
+            self.markers.setEditText(path)
+
+    def _browse_out(self):
+        path = pya.QFileDialog.getExistingDirectory(self, "Output folder", self.out.text)
+        if path:
+            self.out.text = path
+
+    def values(self):
+        """The batch flow's arguments (strings), plus the layer."""
+        return {"layer": self.layer.currentText, "markers": self.markers.currentText.strip(),
+                "sizes": self.sizes.text.strip(), "mode": "ABC"[self.mode.currentIndex],
+                "split": "threshold" if self.split.currentIndex == 1 else "stratified",
+                "fraction": self.fraction.text.strip(), "threshold": self.threshold.text.strip(),
+                "seed": self.seed.text.strip(), "out": self.out.text.strip()}
+
+
+def ask_flow(layers, current_layer, title):
+    """Shows the flow dialog with the last settings; returns its values (and remembers them),
+    or None if cancelled."""
+    global current
+    d = FlowDialog(pya.Application.instance().main_window(), layers, current_layer, load_settings(), title)
+    current = d
+    try:
+        if not d.exec_():
+            return None
+        v = d.values()
+        save_settings(v)
+        return v
     finally:
         current = None
         d._destroy()

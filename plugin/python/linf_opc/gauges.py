@@ -40,10 +40,17 @@ class Gauges:
         return r
 
 
-def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0):
+def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, with_diagram=False):
+    """with_diagram: also keep the diagram's pieces (Gauges.pieces_diagram, a diagram.Diagram),
+    so that a flow writes both without building the diagram twice."""
     t0 = time.perf_counter()
-    raw = core.gauges_polygons(polygons, check, 2000, 0, tooth_fraction, space_limit_widths)
-    return Gauges(raw, time.perf_counter() - t0)
+    raw = core.gauges_polygons(polygons, check, 2000, 0, tooth_fraction, space_limit_widths, with_diagram)
+    out = Gauges(raw, time.perf_counter() - t0)
+    if with_diagram:
+        from .diagram import Diagram
+        out.pieces_diagram = Diagram(raw["diagram"], out.seconds["total"])
+        raw["diagram"]["pieces"] = len(raw["diagram"]["pieces"])
+    return out
 
 
 def most_critical_in(gauges, window):

@@ -77,18 +77,23 @@ def _undoable(view, ly, title, draw):
     return result
 
 
-def _run(title, action):
+def _run(title, action, steps=3):
     """The editor survives anything the flow does: every failure becomes a message."""
-    progress = pya.RelativeProgress(title, 3)
+    progress = pya.RelativeProgress(title, steps)
     try:
         action(progress)
     except _Stop:
         pass
+    except batch.UsageError as e:
+        _warn(str(e))
     except diagram_stage.core.DiagramError as e:
         pya.MessageBox.critical(TITLE, "The diagram failed its independent check; nothing was drawn:\n%s" % e,
                                 pya.MessageBox.Ok)
     except Exception as e:
-        pya.MessageBox.critical(TITLE, "%s failed: %s" % (title, e), pya.MessageBox.Ok)
+        if "cancel" in str(e).lower():  # the progress bar's cancel button raises in inc()
+            pya.Application.instance().main_window().message("%s cancelled" % title, 5000)
+        else:
+            pya.MessageBox.critical(TITLE, "%s failed: %s" % (title, e), pya.MessageBox.Ok)
     finally:
         progress._destroy()
 
@@ -173,6 +178,48 @@ def select_patterns():
     _run("Select patterns", action)
 
 
+def run_flow():
+    """Run OPC pattern flow...: the dialog, then diagram -> gauges -> selection -> split written
+    to the chosen folder, the windows drawn (one undo step) and the results in the marker browser."""
+    def action(progress):
+        mw = pya.Application.instance().main_window()
+        view = mw.current_view()
+        if view is None or not view.active_cellview().is_valid():
+            _warn("Open a layout first.")
+            raise _Stop()
+        cv = view.active_cellview()
+        ly = cv.layout()
+        layers = ["%d/%d" % (i.layer, i.datatype) for i in (ly.get_info(k) for k in ly.layer_indexes())
+                  if i.datatype < 200]
+        sel = current_layer(view)
+        here = "%d/%d" % (sel[2].layer, sel[2].datatype) if sel else None
+        values = dialogs.ask_flow(layers, here, "Run OPC pattern flow on %s" % cv.cell.name)
+        if values is None:
+            raise _Stop()
+        if not values["out"]:
+            _warn("Choose an output folder.")
+            raise _Stop()
+        l, d = layer_io.parse_layer(values["layer"])
+        index = ly.find_layer(l, d)
+        if index is None:
+            _warn("Layer %s is not in the layout." % values["layer"])
+            raise _Stop()
+        inp = batch.Input(ly, cv.cell, index, cv.filename(), values["out"])
+        args = dict(values, modes="A,B,C", halves="0")
+
+        def step(stage):
+            progress.format = stage
+            progress.inc()
+        line, rdb, chosen = batch.flow(inp, args, step)
+        _undoable(view, ly, "OPC pattern flow on %s" % values["layer"],
+                  lambda: selection_output.add_layer(ly, cv.cell, chosen, l, d))
+        index = view.add_rdb(rdb)
+        view.show_rdb(index, view.active_cellview_index())
+        mw.message(line, 20000)
+        run_flow.last = line
+    _run("OPC pattern flow", action, steps=4)
+
+
 def register():
     menu = pya.Application.instance().main_window().menu()
     if menu.is_valid(MENU):
@@ -190,4 +237,8 @@ def register():
     select.title = "Select patterns..."
     select.on_triggered(select_patterns)
     menu.insert_item(MENU + ".end", "select", select)
-    register.actions = [action, gauges, select]  # keep the actions alive
+    flow = pya.Action()
+    flow.title = "Run OPC pattern flow..."
+    flow.on_triggered(run_flow)
+    menu.insert_item(MENU + ".end", "flow", flow)
+    register.actions = [action, gauges, select, flow]  # keep the actions alive

@@ -90,3 +90,23 @@ def stats(study, dbu, chosen, similarity=None):
     if similarity is not None:
         out["similarity"] = similarity
     return out
+
+
+def report_split(split, dbu, cell_name, rdb):
+    """Category "split" with every pattern (its window, µm) tagged "calibration" or
+    "verification", with the named values gauge_rank, type, score, norm_score and set."""
+    rcell = rdb.cell_by_qname(cell_name) or rdb.create_cell(cell_name)
+    cat = rdb.create_category("split")
+    cat.description = "calibration / verification split (%s)" % split.mode
+    tags = {k: rdb.user_tag_id(k) for k in ("gauge_rank", "type", "score", "norm_score", "set")}
+    for p, which in zip(split.patterns, split.assign):
+        g = p.gauge
+        item = rdb.create_item(rcell.rdb_id(), cat.rdb_id())
+        x1, y1, x2, y2 = p.box
+        item.add_value(pya.DBox(x1 * dbu, y1 * dbu, x2 * dbu, y2 * dbu))
+        for k, v in (("gauge_rank", float(g.rank)), ("type", g.type), ("score", g.score * dbu),
+                     ("norm_score", g.norm_score), ("set", which)):
+            value = pya.RdbItemValue(v)
+            value.tag_id = tags[k]
+            item.add_value(value)
+        item.add_tag(rdb.tag_id(which))
