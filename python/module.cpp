@@ -9,6 +9,7 @@
 
 #include "linf/diagram.hpp"
 #include "linf/engine.hpp"
+#include "linf/farthest.hpp"
 #include "linf/gauge.hpp"
 #include "linf/selection.hpp"
 #include "linf/sites.hpp"
@@ -259,6 +260,47 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def("estimate_pitch", &estimate_pitch, py::arg("widths"), py::arg("spaces"),
         "Pitch from gauges: weighted median width + weighted median space; pairs are (cd, extension).");
+
+  m.def(
+      "farthest_voronoi",
+      [](const std::vector<std::vector<XY>>& sites, bool l1) {
+        FarthestDiagram d;
+        {
+          std::vector<std::vector<Point>> in;
+          for (auto& s : sites) {
+            in.emplace_back();
+            for (auto& p : s) in.back().push_back({p.first, p.second});
+          }
+          py::gil_scoped_release unlocked;
+          if (l1) {
+            std::vector<Segment> segs;
+            for (auto& s : in) {
+              if (s.size() > 2) throw std::invalid_argument("the L1 diagram takes points and segments only");
+              segs.push_back({s.front(), s.back()});
+            }
+            d = farthest_voronoi_l1(segs);
+          } else {
+            d = farthest_voronoi(in);
+          }
+        }
+        py::list faces, vertices, edges;
+        for (const FarthestFace& f : d.faces) faces.append(py::make_tuple(f.owners, f.direction.x, f.direction.y));
+        for (const FarthestVertex& v : d.vertices) vertices.append(py::make_tuple(v.at.x, v.at.y, v.weight, v.faces));
+        for (const FarthestEdge& e : d.edges)
+          edges.append(py::make_tuple(e.left, e.right, e.from, e.to, e.direction.x, e.direction.y));
+        py::dict out;
+        out["faces"] = faces;
+        out["vertices"] = vertices;
+        out["edges"] = edges;
+        out["root"] = py::make_tuple(d.root.p.x, d.root.p.y, d.root.q.x, d.root.q.y, d.root.half_side);
+        return out;
+      },
+      py::arg("sites"), py::arg("l1") = false,
+      "Farthest-site Voronoi diagram in L-inf (l1=True: in L1) of sites [[(x, y), ...]]: a point, a segment\n"
+      "(two points) or a convex polygon each, integer coordinates below 2^30; segments may cross.\n"
+      "Returns {'faces': [([owner sites], dx, dy)], 'vertices': [(x, y, weight, [faces])], 'edges':\n"
+      "[(left face, right face, from vertex, to vertex or -1 for a ray, dx, dy)], 'root': (x1, y1, x2, y2,\n"
+      "half_side)}: the centres of the smallest axis-parallel squares touching every site, and their half-side.");
 
   m.def(
       "cgal_construction_seconds",

@@ -99,6 +99,48 @@ std::vector<Plane> planes_of(const std::vector<std::vector<Point>>& sites) {
   return out;
 }
 
+// Pieces whose gradient lies inside one side of the gradient diamond (|a| + |b| = 1) have their
+// dual points in one vertical plane; only the upper convex chain of those points, between the
+// side's two corner (axis) pieces, can reach the upper hull. Keeping only those chains leaves
+// the 3D hull a handful of points for random input.
+std::vector<Plane> upper_chains(std::vector<Plane> planes) {
+  using P2 = K::Point_2;
+  std::vector<Plane> out;
+  std::vector<std::vector<std::size_t>> side(4);
+  std::map<std::pair<std::int64_t, std::int64_t>, std::size_t> corner;
+  for (std::size_t i = 0; i < planes.size(); ++i) {
+    const Plane& p = planes[i];
+    if (p.nx == 0 || p.ny == 0) {
+      corner[{p.nx, p.ny}] = i;
+      out.push_back(p);
+    } else {
+      side[(p.nx > 0 ? 0 : 1) + (p.ny > 0 ? 0 : 2)].push_back(i);
+    }
+  }
+  const std::pair<std::int64_t, std::int64_t> ends[4][2] = {
+      {{1, 0}, {0, 1}}, {{-1, 0}, {0, 1}}, {{1, 0}, {0, -1}}, {{-1, 0}, {0, -1}}};
+  for (int k = 0; k < 4; ++k) {
+    if (side[k].empty()) continue;
+    std::vector<std::pair<P2, std::size_t>> pts;
+    for (auto e : ends[k]) {
+      const Plane& c = planes[corner.at(e)];
+      pts.push_back({P2(c.a(), c.c()), std::size_t(-1)});
+    }
+    for (std::size_t i : side[k]) pts.push_back({P2(planes[i].a(), planes[i].c()), i});
+    std::sort(pts.begin(), pts.end(), [](auto& u, auto& v) { return CGAL::compare_xy(u.first, v.first) == CGAL::SMALLER; });
+    std::vector<std::pair<P2, std::size_t>> chain;
+    for (auto& q : pts) {
+      while (chain.size() >= 2 &&
+             CGAL::orientation(chain[chain.size() - 2].first, chain.back().first, q.first) != CGAL::RIGHT_TURN)
+        chain.pop_back();
+      chain.push_back(q);
+    }
+    for (auto& q : chain)
+      if (q.second != std::size_t(-1)) out.push_back(planes[q.second]);
+  }
+  return out;
+}
+
 struct Lexi {
   bool operator()(const P3& u, const P3& v) const { return CGAL::compare_xyz(u, v) == CGAL::SMALLER; }
 };
@@ -179,7 +221,7 @@ Vec2 unit(double x, double y) {
 FarthestDiagram farthest_voronoi(const std::vector<std::vector<Point>>& sites) {
   if (sites.empty()) return {};
   Builder b;
-  b.planes = planes_of(sites);
+  b.planes = upper_chains(planes_of(sites));
   const auto& P = b.planes;
   std::vector<P3> pts;
   std::map<P3, std::int32_t, Lexi> id;

@@ -296,6 +296,46 @@ def flow_step():
         mw.menu().action("tools_menu.linf_opc.flow").trigger()
         expected_dialog.pop()
         expect(view.num_rdbs() == rdbs + 1, "cancelling the dialog runs nothing")
+        later(500, farthest_step)
+        return
+    except Exception as e:
+        expect(False, "exception: %s" % e)
+    finish()
+
+
+def farthest_step():
+    """Farthest Voronoi of selection with nothing selected: the current layer in view."""
+    try:
+        view, ly, cell = state["view"], state["ly"], state["cell"]
+        view.clear_selection()
+        select(view, ly)
+        view.zoom_fit()
+        expect(mw.menu().is_valid("tools_menu.linf_opc.farthest"), "farthest menu entry registered")
+        mw.menu().action("tools_menu.linf_opc.farthest").trigger()
+        le, ls = ly.find_layer(L, 240), ly.find_layer(L, 241)
+        ne = cell.shapes(le).size() if le is not None else 0
+        ns = cell.shapes(ls).size() if ls is not None else 0
+        expect(ne > 0 and ns >= 1, "farthest diagram (%d edges) and the touching square drawn" % ne)
+        import linf_opc.menu as menu
+        r = getattr(menu.farthest_of_selection, "last", None)
+        expect(r is not None and r.half_side > 0, "the smallest touching square has a size")
+        # Two selected shapes: the diagram of those two only.
+        li = ly.find_layer(L, D)
+        picked = []
+        for sh in cell.shapes(li).each():
+            if len(picked) == 2:
+                break
+            o = pya.ObjectInstPath()
+            o.top = cell.cell_index()
+            o.cv_index = 0
+            o.layer = li
+            o.shape = sh
+            picked.append(o)
+        view.object_selection = picked
+        mw.menu().action("tools_menu.linf_opc.farthest").trigger()
+        r = menu.farthest_of_selection.last
+        expect(r.n_sites == 2, "the selection's %d shapes are the sites" % r.n_sites)
+        view.clear_selection()
     except Exception as e:
         expect(False, "exception: %s" % e)
     finish()

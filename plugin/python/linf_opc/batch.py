@@ -9,6 +9,7 @@
            [-rd threshold=0.1] [-rd bin=0.025]: the select outputs, calibration.oas, verification.oas,
            calibration_gauges.csv, verification_gauges.csv, split.json (windows.lyrdb items tagged)
   flow     voronoi -> gauges -> select -> split in one run, every output above, summary.json
+  farthest [-rd box=X1,Y1,X2,Y2] (um: shapes meeting the box): farthest.csv, farthest.oas, summary.json
 
 Each command is a function of the parsed arguments returning a short summary line; the stages
 are the same functions the editor's menu calls.
@@ -21,6 +22,7 @@ import pya
 
 from . import clips
 from . import diagram as diagram_stage
+from . import farthest as farthest_stage
 from . import gauge_output
 from . import gauges as gauge_stage
 from . import layout as layer_io
@@ -419,7 +421,46 @@ def cmd_flow(args):
     return flow(Input.from_args(args), args)[0]
 
 
-COMMANDS = {"voronoi": cmd_voronoi, "gauges": cmd_gauges, "select": cmd_select, "split": cmd_split,
+def cmd_farthest(args):
+    """The farthest-site diagram of the layer's shapes (flattened, not merged: each shape is a
+    site), or of those meeting -rd box, and the smallest square touching all of them."""
+    ly, cell, index, (layer, datatype) = load(args)
+    d = out_dir(args)
+    box = None
+    if args.get("box"):
+        x1, y1, x2, y2 = parse_window(args["box"], ly.dbu)
+        box = pya.Box(int(x1), int(y1), int(round(x2)), int(round(y2)))
+    t0 = time.perf_counter()
+    sites = farthest_stage.sites_of_layer(cell, index, box)
+    if not sites:
+        raise UsageError("no shapes on layer %d/%d%s" % (layer, datatype, " in the box" if box else ""))
+    result = farthest_stage.compute(sites)
+    seconds = time.perf_counter() - t0
+    clip = farthest_stage.clip_for(sites)
+    farthest_stage.write_csv(result, clip, os.path.join(d, "farthest.csv"), ly.dbu)
+    res = pya.Layout()
+    res.dbu = ly.dbu
+    top = res.create_cell(cell.name)
+    li = res.insert_layer(pya.LayerInfo(layer, datatype))
+    it = cell.begin_shapes_rec_overlapping(index, box) if box else cell.begin_shapes_rec(index)
+    while not it.at_end():
+        top.shapes(li).insert(it.shape().polygon.transformed(it.trans()))
+        it.next()
+    farthest_stage.add_layers(res, top, result, clip, layer)
+    res.write(os.path.join(d, "farthest.oas"))
+    s = farthest_stage.summary(result, ly.dbu, sites)
+    s.update(input=os.path.abspath(args["input"]), cell=cell.name, layer="%d/%d" % (layer, datatype),
+             seconds=seconds)
+    output.write_json(s, os.path.join(d, "summary.json"))
+    r = s["root"]
+    return ("farthest: %d shapes -> %d faces, %d vertices, %d edges; smallest touching square: side %.6g um "
+            "centred at (%.6g, %.6g)%s; outputs in %s"
+            % (len(sites), s["faces"], s["vertices"], s["edges"], r["side_um"], r["p_um"][0], r["p_um"][1],
+               "" if r["p_um"] == r["q_um"] else " (any centre up to (%.6g, %.6g))" % tuple(r["q_um"]),
+               os.path.abspath(d)))
+
+
+COMMANDS = {"farthest": cmd_farthest, "voronoi": cmd_voronoi, "gauges": cmd_gauges, "select": cmd_select, "split": cmd_split,
             "flow": cmd_flow}
 
 

@@ -10,5 +10,6 @@ gauges_polygons = _core.gauges_polygons
 select_windows = _core.select_windows
 cover_points = _core.cover_points
 estimate_pitch = _core.estimate_pitch
+farthest_voronoi = _core.farthest_voronoi
 cgal_construction_seconds = _core.cgal_construction_seconds
 DiagramError = _core.DiagramError

@@ -8,6 +8,7 @@ import pya
 from . import batch
 from . import diagram as diagram_stage
 from . import dialogs
+from . import farthest as farthest_stage
 from . import gauge_output
 from . import gauges as gauge_stage
 from . import layout as layer_io
@@ -220,6 +221,51 @@ def run_flow():
     _run("OPC pattern flow", action, steps=4)
 
 
+def farthest_of_selection():
+    """Farthest Voronoi of selection: the selected shapes, or the current layer's shapes in the
+    visible area; the diagram on L/240, the smallest touching square on L/241 (one undo step)."""
+    def action(progress):
+        mw = pya.Application.instance().main_window()
+        view = mw.current_view()
+        if view is None or not view.active_cellview().is_valid():
+            _warn("Open a layout first.")
+            raise _Stop()
+        cv = view.active_cellview()
+        ly = cv.layout()
+        shapes, layers = [], set()
+        for obj in view.each_object_selected():
+            if not obj.is_cell_inst() and obj.cv_index == view.active_cellview_index():
+                shapes.append((obj.shape, obj.trans()))
+                layers.add(obj.layer)
+        if shapes:
+            sites = farthest_stage.sites_of_shapes(shapes)
+            info = ly.get_info(sorted(layers)[0])
+            what = "%d selected shapes" % len(sites)
+        else:
+            sel = current_layer(view)
+            if sel is None:
+                _warn("Select shapes, or a layer in the layer list (its shapes in the visible area are used).")
+                raise _Stop()
+            _, index, info = sel
+            box = view.box().transformed(pya.CplxTrans(ly.dbu).inverted())
+            sites = farthest_stage.sites_of_layer(cv.cell, index, box)
+            what = "%d shapes of %s in view" % (len(sites), info.to_s())
+        if not sites:
+            _warn("No shapes to work on.")
+            raise _Stop()
+        progress.inc()
+        result = farthest_stage.compute(sites)
+        progress.inc()
+        clip = farthest_stage.clip_for(sites)
+        _undoable(view, ly, "Farthest Voronoi of %s" % what,
+                  lambda: farthest_stage.add_layers(ly, cv.cell, result, clip, info.layer))
+        progress.inc()
+        mw.message("Farthest Voronoi of %s: %d faces; smallest touching square %.6g um (half-side %.6g um)"
+                   % (what, len(result.faces), 2 * result.half_side * ly.dbu, result.half_side * ly.dbu), 20000)
+        farthest_of_selection.last = result
+    _run("Farthest Voronoi", action)
+
+
 def register():
     menu = pya.Application.instance().main_window().menu()
     if menu.is_valid(MENU):
@@ -241,4 +287,8 @@ def register():
     flow.title = "Run OPC pattern flow..."
     flow.on_triggered(run_flow)
     menu.insert_item(MENU + ".end", "flow", flow)
-    register.actions = [action, gauges, select, flow]  # keep the actions alive
+    far = pya.Action()
+    far.title = "Farthest Voronoi of selection"
+    far.on_triggered(farthest_of_selection)
+    menu.insert_item(MENU + ".end", "farthest", far)
+    register.actions = [action, gauges, select, flow, far]  # keep the actions alive
