@@ -233,3 +233,28 @@ TEST(Farthest, L1ByRotation) {
     }
   }
 }
+
+TEST(Farthest, DegenerateAndNonStandardPositions) {
+  std::mt19937_64 rng(2);
+  // Figure 3.8(c): l_n = l_s and l_e = l_w, the hull a point: a plus sign; its centre touches both.
+  const std::vector<Segment> plus{{{0, 50}, {100, 50}}, {{50, 0}, {50, 100}}};
+  const FarthestDiagram p = farthest_voronoi(plus);
+  EXPECT_DOUBLE_EQ(p.root.half_side, 0);
+  EXPECT_DOUBLE_EQ(p.root.p.x, 50);
+  EXPECT_DOUBLE_EQ(p.root.p.y, 50);
+  EXPECT_EQ(check(plus, rng), 0);
+  // Figure 3.8(a): l_n = l_s only (the hull a segment): two horizontal segments on one line.
+  const std::vector<Segment> line{{{0, 10}, {40, 10}}, {{100, 10}, {160, 10}}};
+  const FarthestDiagram l = farthest_voronoi(line);
+  EXPECT_DOUBLE_EQ(l.root.half_side, 30);
+  EXPECT_EQ(check(line, rng), 0);
+  // Figures 3.5(b) and 3.6: l_n below l_s, l_e right of l_w (axis-parallel, standing apart).
+  const std::vector<Segment> apart{{{0, 0}, {30, 0}}, {{60, 80}, {60, 120}}, {{10, 200}, {10, 230}}};
+  const FarthestDiagram a = farthest_voronoi(apart);
+  EXPECT_DOUBLE_EQ(a.root.half_side, std::max({0.0, (60.0 - 10.0) / 2, (200.0 - 0.0) / 2}));
+  EXPECT_EQ(check(apart, rng), 0);
+  // Crossing segments all through one point, and a segment met by a repeated copy of itself.
+  const std::vector<Segment> star{{{0, 0}, {100, 100}}, {{0, 100}, {100, 0}}, {{50, 0}, {50, 100}}, {{0, 0}, {100, 100}}};
+  EXPECT_EQ(check(star, rng), 0);
+  EXPECT_DOUBLE_EQ(farthest_voronoi(star).root.half_side, 0);
+}
