@@ -31,21 +31,32 @@ def finish():
     app.exit(1 if failures else 0)
 
 
-expected_dialog = []  # titles of dialogs a step opens on purpose
+expected_dialog = []  # titles of dialogs a step opens on purpose (a step fills them in)
+captured = []         # message boxes a step expects: their texts, then closed
+capture_titles = []
+
+
+def dialog_texts(w):
+    texts, todo = [], list(w.children())
+    while todo:
+        c = todo.pop()
+        todo.extend(c.children())
+        if "Label" in type(c).__name__ and c.text:
+            texts.append(c.text)
+    return texts
 
 
 def close_modal():
     """A modal dialog during the test is a failure, never a hang (unless a step expects it)."""
     w = pya.QApplication.activeModalWidget()
-    if w is not None and not any(w.windowTitle.startswith(t) for t in expected_dialog):
-        texts, todo = [], list(w.children())
-        while todo:
-            c = todo.pop()
-            todo.extend(c.children())
-            if "Label" in type(c).__name__ and c.text:
-                texts.append(c.text)
-        expect(False, "a modal dialog came up: %s: %s" % (w.windowTitle, " / ".join(texts)))
+    if w is None or any(w.windowTitle.startswith(t) for t in expected_dialog):
+        return
+    if any(w.windowTitle.startswith(t) for t in capture_titles):
+        captured.append(" / ".join(dialog_texts(w)))
         w.close()
+        return
+    expect(False, "a modal dialog came up: %s: %s" % (w.windowTitle, " / ".join(dialog_texts(w))))
+    w.close()
 
 
 watchdog = pya.QTimer()
@@ -336,6 +347,42 @@ def farthest_step():
         r = menu.farthest_of_selection.last
         expect(r.n_sites == 2, "the selection's %d shapes are the sites" % r.n_sites)
         view.clear_selection()
+        later(300, crash_step)
+        return
+    except Exception as e:
+        expect(False, "exception: %s" % e)
+    finish()
+
+
+def crash_step():
+    """The core crashes (the worker is told to die by signal 11): the editor survives, says so
+    clearly, keeps the layout unchanged and saves the failing input."""
+    try:
+        view, ly, cell = state["view"], state["ly"], state["cell"]
+        select(view, ly)
+        before = cell.shapes(ly.find_layer(L, D)).size()
+        li = ly.find_layer(L, 210)
+        gauges_before = cell.shapes(li).size() if li is not None else 0
+        os.environ["LINF_OPC_WORKER_FAULT"] = "crash"
+        capture_titles.append("L")
+        try:
+            mw.menu().action("tools_menu.linf_opc.gauges").trigger()
+        finally:
+            del os.environ["LINF_OPC_WORKER_FAULT"]
+        say("message after the crash: %s" % captured)
+        expect(any("crashed (signal 11" in c and "not changed" in c for c in captured),
+               "a clear message after the core crashed")
+        failures_dir = os.path.join(pya.Application.instance().application_data_path(), "linf_opc_failures")
+        saved = os.listdir(failures_dir) if os.path.isdir(failures_dir) else []
+        expect(any(f.endswith("gauges_polygons.pickle") for f in saved), "the failing input is saved: %s" % saved)
+        li = ly.find_layer(L, 210)
+        expect(cell.shapes(ly.find_layer(L, D)).size() == before and
+               (cell.shapes(li).size() if li is not None else 0) == gauges_before, "the layout is unchanged")
+        capture_titles.pop()
+        # And the next run works again.
+        mw.menu().action("tools_menu.linf_opc.gauges").trigger()
+        li = ly.find_layer(L, 210)
+        expect(li is not None and cell.shapes(li).size() > 0, "the next run works")
     except Exception as e:
         expect(False, "exception: %s" % e)
     finish()

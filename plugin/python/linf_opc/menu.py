@@ -3,9 +3,12 @@
 Everything here is about the editor (current layer, transactions, progress, messages); the
 work itself is the same stage functions the batch macro calls.
 """
+import os
+
 import pya
 
 from . import batch
+from . import core
 from . import diagram as diagram_stage
 from . import dialogs
 from . import farthest as farthest_stage
@@ -16,6 +19,7 @@ from . import markers as marker_io
 from . import output
 from . import selection as selection_stage
 from . import selection_output
+from . import worker
 
 MENU = "tools_menu.linf_opc"
 TITLE = "L\u221e Voronoi OPC"
@@ -78,11 +82,31 @@ def _undoable(view, ly, title, draw):
     return result
 
 
+def _runner(progress):
+    """The core runs in a watched worker process; while it works, the editor stays responsive
+    and the progress bar's cancel button stops it."""
+    app = pya.Application.instance()
+    busy = pya.AbsoluteProgress("computing")
+    busy.format = "%.0f s"
+    busy.unit = 1
+
+    def wait(elapsed):
+        busy.set(int(elapsed), True)  # raises when the person cancels
+        app.process_events()
+    failures = os.path.join(app.application_data_path(), "linf_opc_failures")
+    runner = worker.Runner(wait, failures)
+    runner.progress = busy
+    return runner
+
+
 def _run(title, action, steps=3):
-    """The editor survives anything the flow does: every failure becomes a message."""
+    """The editor survives anything the flow does: the core runs in a worker process, and
+    every failure becomes a message."""
     progress = pya.RelativeProgress(title, steps)
+    runner = _runner(progress)
     try:
-        action(progress)
+        with core.running_with(runner):
+            action(progress)
     except _Stop:
         pass
     except batch.UsageError as e:
@@ -90,12 +114,17 @@ def _run(title, action, steps=3):
     except diagram_stage.core.DiagramError as e:
         pya.MessageBox.critical(TITLE, "The diagram failed its independent check; nothing was drawn:\n%s" % e,
                                 pya.MessageBox.Ok)
+    except worker.Cancelled:
+        pya.Application.instance().main_window().message("%s cancelled" % title, 5000)
+    except worker.WorkerError as e:
+        pya.MessageBox.critical(TITLE, "%s: %s" % (title, e), pya.MessageBox.Ok)
     except Exception as e:
         if "cancel" in str(e).lower():  # the progress bar's cancel button raises in inc()
             pya.Application.instance().main_window().message("%s cancelled" % title, 5000)
         else:
             pya.MessageBox.critical(TITLE, "%s failed: %s" % (title, e), pya.MessageBox.Ok)
     finally:
+        runner.progress._destroy()
         progress._destroy()
 
 
