@@ -15,7 +15,9 @@ Each command is a function of the parsed arguments returning a short summary lin
 are the same functions the editor's menu calls.
 """
 import os
+import shutil
 import sys
+import tempfile
 import time
 
 import pya
@@ -78,6 +80,39 @@ def out_dir(args):
     return d
 
 
+class Staging:
+    """Output files are written into a hidden folder inside the output folder and moved into
+    place only when the whole command has succeeded: a failed or interrupted run leaves no
+    half-written file behind (and the files of an earlier run stay as they were)."""
+    open_ones = []
+
+    def __init__(self, out):
+        self.final = os.path.abspath(out_dir({"out": out}))
+        try:
+            self.dir = tempfile.mkdtemp(prefix=".linf_opc-partial-", dir=self.final)
+        except OSError as e:
+            raise UsageError("cannot write into the output folder %s: %s" % (self.final, e.strerror))
+        Staging.open_ones.append(self)
+
+    def file(self, name):
+        return os.path.join(self.dir, name)
+
+    def commit(self):
+        for name in sorted(os.listdir(self.dir)):
+            os.replace(os.path.join(self.dir, name), os.path.join(self.final, name))
+        self.abort()
+
+    def abort(self):
+        shutil.rmtree(self.dir, ignore_errors=True)
+        if self in Staging.open_ones:
+            Staging.open_ones.remove(self)
+
+    @classmethod
+    def finish_all(cls, ok):
+        for st in list(cls.open_ones):
+            st.commit() if ok else st.abort()
+
+
 class Input:
     """The layer to work on: layout, cell, layer, its merged region and polygons, the out dir.
     The batch builds it from its arguments (from_args), the editor from the current view."""
@@ -86,7 +121,8 @@ class Input:
         info = ly.get_info(index)
         self.layer, self.datatype = info.layer, info.datatype
         self.path = os.path.abspath(path) if path else ""
-        self.dir = out_dir({"out": out})
+        self.out = Staging(out)
+        self.dir = self.out.final  # where the files end up (named in messages)
         t0 = time.perf_counter()
         self.region = layer_io.region_of(self.cell, self.index)
         self.polygons = layer_io.polygons_of(self.region)
@@ -104,7 +140,7 @@ class Input:
         return cls(ly, cell, index, args["input"], args["out"])
 
     def file(self, name):
-        return os.path.join(self.dir, name)
+        return self.out.file(name)
 
     def result_layout(self):
         """A layout with one top cell holding the merged input layer, to add result layers to."""
@@ -425,7 +461,10 @@ def cmd_farthest(args):
     """The farthest-site diagram of the layer's shapes (flattened, not merged: each shape is a
     site), or of those meeting -rd box, and the smallest square touching all of them."""
     ly, cell, index, (layer, datatype) = load(args)
-    d = out_dir(args)
+    if not args.get("out"):
+        raise UsageError("missing -rd out=DIR")
+    out = Staging(args["out"])
+    d = out.final
     box = None
     if args.get("box"):
         x1, y1, x2, y2 = parse_window(args["box"], ly.dbu)
@@ -437,7 +476,7 @@ def cmd_farthest(args):
     result = farthest_stage.compute(sites)
     seconds = time.perf_counter() - t0
     clip = farthest_stage.clip_for(sites)
-    farthest_stage.write_csv(result, clip, os.path.join(d, "farthest.csv"), ly.dbu)
+    farthest_stage.write_csv(result, clip, out.file("farthest.csv"), ly.dbu)
     res = pya.Layout()
     res.dbu = ly.dbu
     top = res.create_cell(cell.name)
@@ -447,11 +486,11 @@ def cmd_farthest(args):
         top.shapes(li).insert(it.shape().polygon.transformed(it.trans()))
         it.next()
     farthest_stage.add_layers(res, top, result, clip, layer)
-    res.write(os.path.join(d, "farthest.oas"))
+    res.write(out.file("farthest.oas"))
     s = farthest_stage.summary(result, ly.dbu, sites)
     s.update(input=os.path.abspath(args["input"]), cell=cell.name, layer="%d/%d" % (layer, datatype),
              seconds=seconds)
-    output.write_json(s, os.path.join(d, "summary.json"))
+    output.write_json(s, out.file("summary.json"))
     r = s["root"]
     return ("farthest: %d shapes -> %d faces, %d vertices, %d edges; smallest touching square: side %.6g um "
             "centred at (%.6g, %.6g)%s; outputs in %s"
@@ -470,11 +509,18 @@ def main(args):
     try:
         if cmd not in COMMANDS:
             raise UsageError("unknown or missing -rd cmd=%s; one of: %s" % (cmd, ", ".join(sorted(COMMANDS))))
-        print(COMMANDS[cmd](args))
+        line = COMMANDS[cmd](args)
+        Staging.finish_all(True)
+        print(line)
         return 0
     except (UsageError, ValueError) as e:
+        Staging.finish_all(False)
         sys.stderr.write("linf_opc: error: %s\n" % e)
         return 2
     except diagram_stage.core.DiagramError as e:
+        Staging.finish_all(False)
         sys.stderr.write("linf_opc: the diagram failed its independent check, nothing written: %s\n" % e)
         return 3
+    except BaseException:
+        Staging.finish_all(False)
+        raise

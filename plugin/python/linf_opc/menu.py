@@ -240,7 +240,11 @@ def run_flow():
         def step(stage):
             progress.format = stage
             progress.inc()
-        line, rdb, chosen = batch.flow(inp, args, step)
+        try:
+            line, rdb, chosen = batch.flow(inp, args, step)
+            inp.out.commit()
+        finally:
+            inp.out.abort()  # no-op after a commit; a failed run leaves no partial files
         _undoable(view, ly, "OPC pattern flow on %s" % values["layer"],
                   lambda: selection_output.add_layer(ly, cv.cell, chosen, l, d))
         index = view.add_rdb(rdb)
