@@ -383,6 +383,14 @@ def crash_step():
         mw.menu().action("tools_menu.linf_opc.gauges").trigger()
         li = ly.find_layer(L, 210)
         expect(li is not None and cell.shapes(li).size() > 0, "the next run works")
+        # No layer to work on: a new empty layout. A message, nothing else.
+        mw.create_layout(1)
+        capture_titles.append("L")
+        del captured[:]
+        mw.menu().action("tools_menu.linf_opc.gauges").trigger()
+        capture_titles.pop()
+        say("message without a current layer: %s" % captured)
+        expect(any("Select a drawing layer" in c for c in captured), "no current layer: a clear message")
     except Exception as e:
         expect(False, "exception: %s" % e)
     finish()
