@@ -1,0 +1,95 @@
+# One input of bench/bench_flow.py, in its own KLayout process (so that its peak memory is its
+# own): prints one JSON line with the stage times, counts and peak memory.
+#   klayout -b -r bench/flow_one.py -rd input=FILE|generated:N -rd layer=L/D [-rd cell=NAME]
+#           [-rd markers=SPEC] [-rd threads=N] [-rd drc=1]
+import json
+import os
+import random
+import resource
+import sys
+import time
+
+repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(repo, "build"))
+sys.path.insert(0, os.path.join(repo, "plugin", "python"))
+
+import pya  # noqa: E402
+
+from linf_opc import core, layout, markers as marker_io, selection, split  # noqa: E402
+from linf_opc import gauges as gauge_stage  # noqa: E402
+
+g = globals()
+t = {}
+
+
+def generated(n, seed=1):
+    """A routed-metal-like layer of about n rectangles: horizontal tracks on a 100 DBU pitch,
+    wires of random length and gaps, 50 DBU wide, every fifth a vertical jog to the next track."""
+    rng = random.Random(seed)
+    ly = pya.Layout()
+    ly.dbu = 0.001
+    top = ly.create_cell("GEN")
+    shapes = top.shapes(ly.layer(1, 0))
+    tracks = max(1, int((n / 40) ** 0.5 * 1.0))
+    length = max(2000, int(n / tracks * 700))
+    count = 0
+    for k in range(tracks):
+        x = rng.randrange(0, 400)
+        y = k * 100
+        while x < length and count < n:
+            w = rng.randrange(150, 1500)
+            shapes.insert(pya.Box(x, y, x + w, y + 50))
+            count += 1
+            if count % 5 == 0 and count < n and k + 1 < tracks:
+                shapes.insert(pya.Box(x + w - 50, y, x + w, y + 150))
+                count += 1
+            x += w + rng.randrange(50, 600)
+    return ly, top
+
+
+t0 = time.perf_counter()
+if g["input"].startswith("generated:"):
+    ly, cell = generated(int(g["input"].split(":")[1]))
+    L, D = 1, 0
+else:
+    ly = pya.Layout()
+    ly.read(g["input"])
+    cell = ly.cell(g["cell"]) if g.get("cell") else ly.top_cells()[0]
+    L, D = layout.parse_layer(g["layer"])
+li = ly.find_layer(L, D)
+region = layout.region_of(cell, li)
+polygons = layout.polygons_of(region)
+t["load"] = time.perf_counter() - t0
+threads = int(g.get("threads") or 0)
+t0 = time.perf_counter()
+raw = core.gauges_polygons(polygons, True, 2000, threads)
+t["diagram_and_gauges"] = time.perf_counter() - t0
+t["diagram"] = raw["diagram"]["seconds"]["merge"] + raw["diagram"]["seconds"]["build"] + raw["diagram"]["seconds"]["check"]
+t["gauges"] = raw["diagram"]["seconds"]["gauges"]
+res = gauge_stage.Gauges(raw, t["diagram_and_gauges"])
+gs = res.gauges
+if g.get("markers"):
+    ms = marker_io.load(g["markers"], ly, cell).boxes
+else:  # no markers: 1% of the gauge points, seeded
+    rng = random.Random(7)
+    pts = rng.sample(gs, max(1, len(gs) // 100))
+    ms = [(p.cx - 8, p.cy - 8, p.cx + 8, p.cy + 8) for p in pts]
+t0 = time.perf_counter()
+pitch = selection.pitch_of(gs)
+st = selection.study(gs, ms, pitch, sizes=(7,), modes=("A",))
+t["selection"] = time.perf_counter() - t0
+t0 = time.perf_counter()
+sp = split.stratified(split.patterns_of(st.runs[("A", 7)], gs, ms))
+t["split"] = time.perf_counter() - t0
+out = {"input": os.path.basename(g["input"]), "polygons": len(polygons), "sites": raw["diagram"]["sites"],
+       "segments": sum(len(o) + sum(len(h) for h in hs) for o, hs in polygons), "gauges": len(gs),
+       "markers": len(ms), "patterns": len(sp.patterns), "seconds": t, "threads": threads}
+if g.get("drc") == "1":
+    w0 = min(x.cd for x in gs if x.type == "internal")
+    t0 = time.perf_counter()
+    fresh = pya.Region(cell.begin_shapes_rec(li))
+    fresh.width_check(int(2 * w0), False, pya.Region.Square).size()
+    fresh.space_check(int(2 * w0), False, pya.Region.Square).size()
+    t["klayout_width_space"] = time.perf_counter() - t0
+out["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+print("RESULT " + json.dumps(out))
