@@ -23,26 +23,21 @@ t = {}
 
 
 def generated(n, seed=1):
-    """A routed-metal-like layer of about n rectangles: horizontal tracks on a 100 DBU pitch,
-    wires of random length and gaps, 50 DBU wide, every fifth a vertical jog to the next track."""
+    """A routed-metal-like square block of n rectangles: horizontal tracks on a 100 DBU pitch,
+    wires 50 DBU wide of random length (150-1500) with random gaps (50-600)."""
     rng = random.Random(seed)
     ly = pya.Layout()
     ly.dbu = 0.001
     top = ly.create_cell("GEN")
     shapes = top.shapes(ly.layer(1, 0))
-    tracks = max(1, int((n / 40) ** 0.5 * 1.0))
-    length = max(2000, int(n / tracks * 700))
-    count = 0
+    tracks = max(1, int((11.5 * n) ** 0.5))  # about 1150 DBU of track per wire: a square block
+    length, count = 100 * tracks, 0
     for k in range(tracks):
         x = rng.randrange(0, 400)
-        y = k * 100
         while x < length and count < n:
             w = rng.randrange(150, 1500)
-            shapes.insert(pya.Box(x, y, x + w, y + 50))
+            shapes.insert(pya.Box(x, k * 100, x + w, k * 100 + 50))
             count += 1
-            if count % 5 == 0 and count < n and k + 1 < tracks:
-                shapes.insert(pya.Box(x + w - 50, y, x + w, y + 150))
-                count += 1
             x += w + rng.randrange(50, 600)
     return ly, top
 
