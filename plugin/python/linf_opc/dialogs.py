@@ -10,6 +10,48 @@ from .selection import MODE_NAMES
 current = None
 
 
+def _marker_row(dialog, layers, text=""):
+    """An editable list of layers with a File... button; returns (row widget, combo box)."""
+    row = pya.QWidget(dialog)
+    line = pya.QHBoxLayout(row)
+    line.setContentsMargins(0, 0, 0, 0)
+    combo = pya.QComboBox(row)
+    combo.editable = True
+    combo.minimumContentsLength = 30
+    for name in layers:
+        combo.addItem(name)
+    if text:
+        combo.setEditText(text)
+    browse = pya.QPushButton("File...", row)
+
+    def pick():
+        path = pya.QFileDialog.getOpenFileName(dialog, "Marker file", "", "Markers (*.csv *.lyrdb *.rdb);;All (*)")
+        if path:
+            combo.setEditText(path)
+    browse.clicked = pick
+    row._pick = pick  # keep the handler alive with the row
+    line.addWidget(combo)
+    line.addWidget(browse)
+    return row, combo
+
+
+def _mode_box(dialog, mode="A"):
+    box = pya.QComboBox(dialog)
+    for m in ("A", "B", "C"):
+        box.addItem("%s: %s" % (m, MODE_NAMES[m]))
+    box.currentIndex = "ABC".find(mode) if mode in ("A", "B", "C") else 0
+    return box
+
+
+def _buttons(dialog, form):
+    buttons = pya.QDialogButtonBox(dialog)
+    buttons.addButton(pya.QDialogButtonBox.Ok)
+    buttons.addButton(pya.QDialogButtonBox.Cancel)
+    buttons.accepted = dialog.accept
+    buttons.rejected = dialog.reject
+    form.addRow(buttons)
+
+
 class SelectDialog(pya.QDialog):
     """Marker source, window sizes, coverage mode and pitch for "Select patterns..."."""
 
@@ -17,39 +59,16 @@ class SelectDialog(pya.QDialog):
         super().__init__(parent)
         self.windowTitle = title
         form = pya.QFormLayout(self)
-        row = pya.QWidget(self)
-        line = pya.QHBoxLayout(row)
-        line.setContentsMargins(0, 0, 0, 0)
-        self.markers = pya.QComboBox(row)
-        self.markers.editable = True
-        self.markers.minimumContentsLength = 30
-        for name in layers:
-            self.markers.addItem(name)
-        browse = pya.QPushButton("File...", row)
-        browse.clicked = self._browse
-        line.addWidget(self.markers)
-        line.addWidget(browse)
+        row, self.markers = _marker_row(self, layers)
         form.addRow("Markers (layer L/D, .csv, .lyrdb)", row)
         self.sizes = pya.QLineEdit("5,6,7,8", self)
         form.addRow("Window sizes (pitches)", self.sizes)
-        self.mode = pya.QComboBox(self)
-        for m in ("A", "B", "C"):
-            self.mode.addItem("%s: %s" % (m, MODE_NAMES[m]))
+        self.mode = _mode_box(self)
         form.addRow("Coverage mode", self.mode)
         self.pitch = pya.QLineEdit("", self)
         self.pitch.placeholderText = "estimated from the layer"
         form.addRow("Pitch (um)", self.pitch)
-        buttons = pya.QDialogButtonBox(self)
-        buttons.addButton(pya.QDialogButtonBox.Ok)
-        buttons.addButton(pya.QDialogButtonBox.Cancel)
-        buttons.accepted = self.accept
-        buttons.rejected = self.reject
-        form.addRow(buttons)
-
-    def _browse(self):
-        path = pya.QFileDialog.getOpenFileName(self, "Marker file", "", "Markers (*.csv *.lyrdb *.rdb);;All (*)")
-        if path:
-            self.markers.setEditText(path)
+        _buttons(self, form)
 
     def values(self):
         """{"markers", "sizes", "mode", "pitch"} as the batch command's arguments take them."""
@@ -103,26 +122,11 @@ class FlowDialog(pya.QDialog):
             self.layer.addItem(name)
         self._select(self.layer, current_layer or settings.get("layer", ""))
         form.addRow("Layer", self.layer)
-        row = pya.QWidget(self)
-        line = pya.QHBoxLayout(row)
-        line.setContentsMargins(0, 0, 0, 0)
-        self.markers = pya.QComboBox(row)
-        self.markers.editable = True
-        self.markers.minimumContentsLength = 30
-        for name in layers:
-            self.markers.addItem(name)
-        self.markers.setEditText(settings.get("markers", ""))
-        browse = pya.QPushButton("File...", row)
-        browse.clicked = self._browse_markers
-        line.addWidget(self.markers)
-        line.addWidget(browse)
+        row, self.markers = _marker_row(self, layers, settings.get("markers", ""))
         form.addRow("Markers (layer L/D, .csv, .lyrdb)", row)
         self.sizes = pya.QLineEdit(settings.get("sizes", "5,6,7,8"), self)
         form.addRow("Window sizes (pitches)", self.sizes)
-        self.mode = pya.QComboBox(self)
-        for m in ("A", "B", "C"):
-            self.mode.addItem("%s: %s" % (m, MODE_NAMES[m]))
-        self.mode.currentIndex = "ABC".find(settings.get("mode", "A")) if settings.get("mode", "A") in "ABC" else 0
+        self.mode = _mode_box(self, settings.get("mode", "A"))
         form.addRow("Coverage mode", self.mode)
         self.split = pya.QComboBox(self)
         self.split.addItem("stratified hold-out")
@@ -144,23 +148,13 @@ class FlowDialog(pya.QDialog):
         line.addWidget(self.out)
         line.addWidget(pick)
         form.addRow("Output folder", row)
-        buttons = pya.QDialogButtonBox(self)
-        buttons.addButton(pya.QDialogButtonBox.Ok)
-        buttons.addButton(pya.QDialogButtonBox.Cancel)
-        buttons.accepted = self.accept
-        buttons.rejected = self.reject
-        form.addRow(buttons)
+        _buttons(self, form)
 
     @staticmethod
     def _select(combo, text):
         i = combo.findText(text)
         if i >= 0:
             combo.currentIndex = i
-
-    def _browse_markers(self):
-        path = pya.QFileDialog.getOpenFileName(self, "Marker file", "", "Markers (*.csv *.lyrdb *.rdb);;All (*)")
-        if path:
-            self.markers.setEditText(path)
 
     def _browse_out(self):
         path = pya.QFileDialog.getExistingDirectory(self, "Output folder", self.out.text)

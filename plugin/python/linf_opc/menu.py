@@ -299,29 +299,24 @@ def farthest_of_selection():
     _run("Farthest Voronoi", action)
 
 
+ENTRIES = [
+    ("voronoi", "Voronoi diagram of current layer", voronoi_of_current_layer),
+    ("gauges", "Suggest gauges on current layer", gauges_of_current_layer),
+    ("select", "Select patterns...", select_patterns),
+    ("flow", "Run OPC pattern flow...", run_flow),
+    ("farthest", "Farthest Voronoi of selection", farthest_of_selection),
+]
+
+
 def register():
     menu = pya.Application.instance().main_window().menu()
     if menu.is_valid(MENU):
         return
     menu.insert_menu("tools_menu.end", "linf_opc", TITLE)
-    action = pya.Action()
-    action.title = "Voronoi diagram of current layer"
-    action.on_triggered(voronoi_of_current_layer)
-    menu.insert_item(MENU + ".end", "voronoi", action)
-    gauges = pya.Action()
-    gauges.title = "Suggest gauges on current layer"
-    gauges.on_triggered(gauges_of_current_layer)
-    menu.insert_item(MENU + ".end", "gauges", gauges)
-    select = pya.Action()
-    select.title = "Select patterns..."
-    select.on_triggered(select_patterns)
-    menu.insert_item(MENU + ".end", "select", select)
-    flow = pya.Action()
-    flow.title = "Run OPC pattern flow..."
-    flow.on_triggered(run_flow)
-    menu.insert_item(MENU + ".end", "flow", flow)
-    far = pya.Action()
-    far.title = "Farthest Voronoi of selection"
-    far.on_triggered(farthest_of_selection)
-    menu.insert_item(MENU + ".end", "farthest", far)
-    register.actions = [action, gauges, select, flow, far]  # keep the actions alive
+    register.actions = []  # keep the actions alive
+    for name, title, handler in ENTRIES:
+        action = pya.Action()
+        action.title = title
+        action.on_triggered(handler)
+        menu.insert_item(MENU + ".end", name, action)
+        register.actions.append(action)
