@@ -33,6 +33,21 @@ std::array<Box, 4> quarters(const Box& b) {
   return {Box{b.x1, b.y1, mx, my}, Box{mx, b.y1, b.x2, my}, Box{b.x1, my, mx, b.y2}, Box{mx, my, b.x2, b.y2}};
 }
 
+// Liang-Barsky: the parameter interval [t0, t1] of the segment p + t (q - p), t in [0, 1],
+// inside the closed box; false if the segment misses it.
+bool clip_to_box(double px, double py, double qx, double qy, const Box& b, double& t0, double& t1) {
+  t0 = 0, t1 = 1;
+  const double dx = qx - px, dy = qy - py;
+  auto edge = [&](double p, double q) {
+    if (p == 0) return q >= 0;
+    const double r = q / p;
+    if (p < 0) { if (r > t1) return false; t0 = std::max(t0, r); }
+    else { if (r < t0) return false; t1 = std::min(t1, r); }
+    return true;
+  };
+  return edge(-dx, px - b.x1) && edge(dx, b.x2 - px) && edge(-dy, py - b.y1) && edge(dy, b.y2 - py);
+}
+
 // L-inf distance between a closed box and a site: zero if they meet, else attained at a vertex
 // of one of them (both are convex polygons and the unit ball is a polygon).
 // The same holds for L1, whose breakpoints along a segment are only the axis crossings.
@@ -44,17 +59,9 @@ double box_distance(const Box& b, const Site& s, bool l1 = false) {
   const double ax = double(s.a.x), ay = double(s.a.y), bx = double(s.b.x), by = double(s.b.y);
   double d = std::min(point_to_box(ax, ay), point_to_box(bx, by));
   if (s.is_point() || d == 0) return d;
-  // Liang-Barsky: does the segment cross the box?
-  double t0 = 0, t1 = 1;
+  double t0, t1;
+  if (clip_to_box(ax, ay, bx, by, b, t0, t1)) return 0;
   const double dx = bx - ax, dy = by - ay;
-  auto edge = [&](double p, double q) {
-    if (p == 0) return q >= 0;
-    double r = q / p;
-    if (p < 0) { if (r > t1) return false; t0 = std::max(t0, r); }
-    else { if (r < t0) return false; t1 = std::min(t1, r); }
-    return true;
-  };
-  if (edge(-dx, ax - b.x1) && edge(dx, b.x2 - ax) && edge(-dy, ay - b.y1) && edge(dy, b.y2 - ay)) return 0;
   auto point_to_seg = [&](double x, double y) {
     const double ux = x - ax, uy = y - ay;
     auto f = [&](double t) {
@@ -407,23 +414,13 @@ class Builder {
     if (std::fabs(f_[t].at(p.x, p.y) - f_[u].at(p.x, p.y)) > tol(p) ||
         std::fabs(f_[t].at(q.x, q.y) - f_[u].at(q.x, q.y)) > tol(q))
       return;
-    if (has_hole_) {  // the far-field pass keeps only what lies outside the inner box
-      double t0 = 0, t1 = 1;
+    double t0, t1;  // the far-field pass keeps only what lies outside the inner box
+    if (has_hole_ && clip_to_box(p.x, p.y, q.x, q.y, hole_, t0, t1) && t1 > t0) {
       const double dx = q.x - p.x, dy = q.y - p.y;
-      auto edge = [&](double pp, double qq) {
-        if (pp == 0) return qq >= 0;
-        const double r = qq / pp;
-        if (pp < 0) { if (r > t1) return false; t0 = std::max(t0, r); }
-        else { if (r < t0) return false; t1 = std::min(t1, r); }
-        return true;
-      };
-      if (edge(-dx, p.x - hole_.x1) && edge(dx, hole_.x2 - p.x) && edge(-dy, p.y - hole_.y1) &&
-          edge(dy, hole_.y2 - p.y) && t1 > t0) {
-        const Vec2 a{p.x + t0 * dx, p.y + t0 * dy}, b{p.x + t1 * dx, p.y + t1 * dy};
-        if (t0 > 1e-12) add_piece(p, a, t, u);
-        if (t1 < 1 - 1e-12) add_piece(b, q, t, u);
-        return;
-      }
+      const Vec2 a{p.x + t0 * dx, p.y + t0 * dy}, b{p.x + t1 * dx, p.y + t1 * dy};
+      if (t0 > 1e-12) add_piece(p, a, t, u);
+      if (t1 < 1 - 1e-12) add_piece(b, q, t, u);
+      return;
     }
     add_piece(p, q, t, u);
   }
