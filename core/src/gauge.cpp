@@ -1,5 +1,7 @@
 #include "linf/gauge.hpp"
 
+#include "linf/median.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -325,18 +327,6 @@ void context_gauges(const Sites& sites, const std::vector<Stretch>& all, std::in
     g.teeth = std::int32_t(shapes.size());
     out.push_back(g);
   }
-}
-
-// The median of (value, weight) pairs by weight; 0 if there is no weight.
-double weighted_median(std::vector<std::pair<double, double>> v) {
-  double total = 0;
-  for (auto& p : v) total += p.second;
-  if (total <= 0) return 0;
-  std::sort(v.begin(), v.end());
-  double acc = 0;
-  for (auto& [x, w] : v)
-    if ((acc += w) >= 0.5 * total) return x;
-  return v.back().first;
 }
 
 // Equal scores rank by context: sandwich > comb > T > external > internal.

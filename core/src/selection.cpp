@@ -1,5 +1,7 @@
 #include "linf/selection.hpp"
 
+#include "linf/median.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -132,19 +134,12 @@ std::vector<Box> cover_points(std::vector<Vec2> points, double side) {
 
 double estimate_pitch(const std::vector<std::pair<double, double>>& widths,
                       const std::vector<std::pair<double, double>>& spaces) {
-  auto median = [](std::vector<std::pair<double, double>> v, double limit) {
-    v.erase(std::remove_if(v.begin(), v.end(), [&](auto& p) { return p.first > limit || p.second <= 0; }), v.end());
-    double total = 0;
-    for (auto& p : v) total += p.second;
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    double acc = 0;
-    for (auto& [cd, ext] : v)
-      if ((acc += ext) >= 0.5 * total) return cd;
-    return v.back().first;
+  auto below = [](std::vector<std::pair<double, double>> v, double limit) {
+    v.erase(std::remove_if(v.begin(), v.end(), [&](auto& p) { return p.first > limit; }), v.end());
+    return v;
   };
-  const double w = median(widths, INFINITY);
-  const double s = median(spaces, 10 * w);
+  const double w = weighted_median(widths);
+  const double s = weighted_median(below(spaces, 10 * w));
   return w > 0 && s > 0 ? w + s : 0.0;
 }
 
