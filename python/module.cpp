@@ -78,12 +78,17 @@ py::dict to_python(const Result& r) {
 
 py::tuple site_tuple(const Site& s) { return py::make_tuple(s.a.x, s.a.y, s.b.x, s.b.y); }
 
-py::dict gauges_to_python(const Result& r, const Gauges& g, double seconds_gauges, bool with_pieces) {
+py::dict gauges_to_python(const Result& r, const Gauges& g, double seconds_gauges, bool with_pieces,
+                          bool with_paths) {
   const auto& S = r.diagram.sites.sites;
   py::list out;
   for (const Gauge& x : g.gauges) {
-    py::list path;
-    for (const Vec2& v : g.stretches[x.stretch].path) path.append(py::make_tuple(v.x, v.y));
+    py::object path = py::none();  // only on request: a list per gauge is costly on a large layer
+    if (with_paths) {
+      py::list pts;
+      for (const Vec2& v : g.stretches[x.stretch].path) pts.append(py::make_tuple(v.x, v.y));
+      path = pts;
+    }
     out.append(py::make_tuple(gauge_type_name(x.type), x.p.x, x.p.y, x.q.x, x.q.y, x.at.x, x.at.y, x.cd, x.score,
                               x.norm_score, x.tiebreak, x.rank, x.teeth, site_tuple(S[x.a]), site_tuple(S[x.b]),
                               x.a, x.b, path));
@@ -158,7 +163,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
   m.def(
       "gauges_polygons",
       [](const PyPolygons& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
-         bool with_pieces) {
+         bool with_pieces, bool with_paths) {
         const std::vector<Polygon> in = polygons_of(polys);
         Result r;
         Gauges g;
@@ -173,13 +178,13 @@ PYBIND11_MODULE(linf_opc_core, m) {
           g = gauges_of(r.diagram, o);
           seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         }
-        return gauges_to_python(r, g, seconds, with_pieces);
+        return gauges_to_python(r, g, seconds, with_pieces, with_paths);
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
-      py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false,
+      py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false, py::arg("paths") = false,
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
       "Returns {'gauges': [(type, x1, y1, x2, y2, cx, cy, cd, score, norm_score, tiebreak, rank, teeth,\n"
-      "(a_x1, a_y1, a_x2, a_y2), (b_x1, b_y1, b_x2, b_y2), site_a, site_b, [stretch path (x, y)])] in rank order, 'stretches': n,\n"
+      "(a_x1, a_y1, a_x2, a_y2), (b_x1, b_y1, b_x2, b_y2), site_a, site_b, [stretch path (x, y)] if paths=True else None)] in rank order, 'stretches': n,\n"
       "'typical_width', 'space_limit', 'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}.\n"
       "DBU throughout. space_limit_widths: spaces wider than this many typical widths are not pattern (0: keep all).\n"
       "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them.");

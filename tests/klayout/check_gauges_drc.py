@@ -237,7 +237,7 @@ def main():
     l, d = (int(v) for v in layer.split("/"))
     region = layer_io.region_of(cell, ly.find_layer(l, d))
     polygons = layer_io.polygons_of(region)
-    result = gauge_stage.compute(polygons)
+    result = gauge_stage.compute(polygons, with_paths=True)
     edges_at = {}
     for outer, holes in polygons:
         for ring in [outer] + holes:

@@ -47,7 +47,7 @@ class _Stop(Exception):
     """Raised after the person has been told why the action cannot go on."""
 
 
-def _layer_polygons(title):
+def _layer_polygons():
     """(main window, view, cellview, layer info, polygons) of the current layer, or _Stop
     after a message: no layout, no layer selected, empty layer."""
     mw = pya.Application.instance().main_window()
@@ -82,7 +82,7 @@ def _undoable(view, ly, title, draw):
     return result
 
 
-def _runner(progress):
+def _runner():
     """The core runs in a watched worker process; while it works, the editor stays responsive
     and the progress bar's cancel button stops it."""
     app = pya.Application.instance()
@@ -103,7 +103,7 @@ def _run(title, action, steps=3):
     """The editor survives anything the flow does: the core runs in a worker process, and
     every failure becomes a message."""
     progress = pya.RelativeProgress(title, steps)
-    runner = _runner(progress)
+    runner = _runner()
     try:
         with core.running_with(runner):
             action(progress)
@@ -130,7 +130,7 @@ def _run(title, action, steps=3):
 
 def voronoi_of_current_layer():
     def action(progress):
-        mw, view, cv, info, polygons = _layer_polygons("L\u221e Voronoi diagram")
+        mw, view, cv, info, polygons = _layer_polygons()
         progress.inc()
         diagram = diagram_stage.compute(polygons)
         progress.inc()
@@ -147,7 +147,7 @@ def voronoi_of_current_layer():
 
 def gauges_of_current_layer():
     def action(progress):
-        mw, view, cv, info, polygons = _layer_polygons("Gauges")
+        mw, view, cv, info, polygons = _layer_polygons()
         progress.inc()
         result = gauge_stage.compute(polygons)
         progress.inc()
@@ -169,7 +169,7 @@ def gauges_of_current_layer():
 
 def select_patterns():
     def action(progress):
-        mw, view, cv, info, polygons = _layer_polygons("Select patterns")
+        mw, view, cv, info, polygons = _layer_polygons()
         ly = cv.layout()
         layers = ["%d/%d" % (i.layer, i.datatype) for i in (ly.get_info(k) for k in ly.layer_indexes())
                   if not (i.layer == info.layer and i.datatype == info.datatype) and i.datatype < 200]
