@@ -21,7 +21,9 @@ Result finish(Sites sites, const DiagramOptions& opt, double seconds_merge) {
   d.sites = std::move(sites);
   d.clip = clip_box(d.sites);
   auto t0 = std::chrono::steady_clock::now();
-  d.pieces = build_pieces(d.sites, d.clip, opt.build);
+  BuildStats st;
+  d.pieces = build_pieces(d.sites, d.clip, opt.build, &st);
+  d.tiles = st.tiles, d.tile_tasks = st.tasks, d.largest_tile_sites = st.largest_tile_sites;
   for (Piece& p : d.pieces) p.kind = classify(d.sites, p);
   d.seconds_build = since(t0);
   d.attempts = 1;

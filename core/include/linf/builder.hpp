@@ -30,10 +30,14 @@ struct BuildOptions {
   int threads = 0;            // workers; 0: one per hardware thread
   bool far_field_pass = true; // build beyond the sites' bounding box in a second pass with the
                               // border's owners only (off: one pass over the clip box)
+  double tile_size = 0;       // DBU; > 0: build the sites' box tile by tile, holding one tile's
+                              // sites at a time (same pieces for every size; see tiles.hpp);
+                              // < 0: automatic, about 2^18 sites a tile
 };
 
 struct BuildStats {
   std::size_t boxes = 0, solves = 0, solved_sites = 0, cells = 0, raw_pieces = 0;
+  std::size_t tiles = 0, tasks = 0, largest_tile_sites = 0;
 };
 
 // Straight pieces with owners and clearances; kinds are left for the classifier.

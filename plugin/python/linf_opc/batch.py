@@ -1,6 +1,7 @@
 """The batch entry point behind macros/linf_opc.py.
 
   klayout -b -r macros/linf_opc.py -rd cmd=COMMAND -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd out=DIR
+           [-rd tile=UM|0|auto]  (the diagram builder's tiles; every output is the same for any size)
   voronoi  the diagram: voronoi.csv, voronoi.oas, summary.json
   gauges   [-rd window=X1,Y1,X2,Y2] (um: the per-pattern mode): gauges.csv, gauges.lyrdb, gauges.oas, summary.json
   select   -rd markers=SPEC [-rd sizes=5,6,7,8] [-rd modes=A,B,C] [-rd mode=A] [-rd size=K] [-rd pitch=UM]
@@ -116,8 +117,9 @@ class Staging:
 class Input:
     """The layer to work on: layout, cell, layer, its merged region and polygons, the out dir.
     The batch builds it from its arguments (from_args), the editor from the current view."""
-    def __init__(self, ly, cell, index, path, out):
+    def __init__(self, ly, cell, index, path, out, tile=-1):
         self.ly, self.cell, self.index = ly, cell, index
+        self.tile = tile  # the builder's tile side in DBU, 0 one tile, -1 automatic
         info = ly.get_info(index)
         self.layer, self.datatype = info.layer, info.datatype
         self.path = os.path.abspath(path) if path else ""
@@ -137,7 +139,7 @@ class Input:
         ly, cell, index, _ = load(args)
         if not args.get("out"):
             raise UsageError("missing -rd out=DIR")
-        return cls(ly, cell, index, args["input"], args["out"])
+        return cls(ly, cell, index, args["input"], args["out"], parse_tile(args.get("tile"), ly.dbu))
 
     def file(self, name):
         return self.out.file(name)
@@ -149,6 +151,19 @@ class Input:
         top = res.create_cell(self.cell.name)
         top.shapes(res.insert_layer(pya.LayerInfo(self.layer, self.datatype))).insert(self.region)
         return res, top
+
+
+def parse_tile(text, dbu):
+    """-rd tile=UM (the builder's tile side in micrometres), 0 (one tile) or auto (default)."""
+    if text in (None, "", "auto"):
+        return -1
+    try:
+        v = float(text)
+    except ValueError:
+        raise UsageError("tile must be a size in micrometres, 0 or auto, not %r" % text)
+    if v < 0:
+        raise UsageError("tile must not be negative: %r" % text)
+    return v / dbu
 
 
 def parse_window(text, dbu):
@@ -208,7 +223,7 @@ def gauges_line(s, gauges, dbu, d):
 
 def cmd_voronoi(args):
     inp = Input.from_args(args)
-    s = write_voronoi(inp, diagram_stage.compute(inp.polygons))
+    s = write_voronoi(inp, diagram_stage.compute(inp.polygons, tile=inp.tile))
     output.write_json(s, inp.file("summary.json"))
     return voronoi_line(s, inp.dir)
 
@@ -216,7 +231,7 @@ def cmd_voronoi(args):
 def cmd_gauges(args):
     inp = Input.from_args(args)
     window = parse_window(args["window"], inp.dbu) if args.get("window") else None
-    result = gauge_stage.compute(inp.polygons)
+    result = gauge_stage.compute(inp.polygons, tile=inp.tile)
     gauges = result.gauges if window is None else gauge_stage.most_critical_in(result.gauges, window)
     s = write_gauges(inp, result, gauges, window)
     output.write_json(s, inp.file("summary.json"))
@@ -358,7 +373,7 @@ def select_line(sel, dbu, d):
 
 def cmd_select(args):
     inp = Input.from_args(args)
-    sel = Selected(inp, args, gauge_stage.compute(inp.polygons))
+    sel = Selected(inp, args, gauge_stage.compute(inp.polygons, tile=inp.tile))
     rdb = new_rdb(inp, "linf_opc select")
     write_selection(inp, sel, rdb)
     rdb.save(inp.file("windows.lyrdb"))
@@ -411,7 +426,7 @@ def split_line(s, d):
 
 def cmd_split(args):
     inp = Input.from_args(args)
-    sel = Selected(inp, args, gauge_stage.compute(inp.polygons))
+    sel = Selected(inp, args, gauge_stage.compute(inp.polygons, tile=inp.tile))
     split = split_of(args, sel)
     rdb = new_rdb(inp, "linf_opc split")
     write_selection(inp, sel, rdb)
@@ -426,7 +441,7 @@ def flow(inp, args, progress=None):
     whose cancel raises). Returns (summary line, rdb, chosen selection run)."""
     step = progress or (lambda stage: None)
     step("diagram and gauges")
-    result = gauge_stage.compute(inp.polygons, with_diagram=True)
+    result = gauge_stage.compute(inp.polygons, with_diagram=True, tile=inp.tile)
     step("writing the diagram and the gauges")
     sv = write_voronoi(inp, result.pieces_diagram)
     sg = write_gauges(inp, result, result.gauges)

@@ -20,6 +20,7 @@ class Diagram:
         self.sites = raw["sites"]
         self.clip = raw["clip"]
         self.check = raw["check"]
+        self.tiles = raw["tiles"]
         self.seconds = dict(raw["seconds"], total=seconds_total)
 
     def counts(self):
@@ -27,7 +28,9 @@ class Diagram:
         return {k: c.get(k, 0) for k in KINDS}
 
 
-def compute(polygons, check=True, check_pairs=2000):
+def compute(polygons, check=True, check_pairs=2000, tile=-1):
+    """tile: side of the builder's tiles in DBU; 0 one tile, -1 automatic. The diagram is the
+    same for every tile size; tiles bound the memory the builder holds at once."""
     t0 = time.perf_counter()
-    raw = core.voronoi_polygons(polygons, check, check_pairs)
+    raw = core.voronoi_polygons(polygons, check, check_pairs, tile=tile)
     return Diagram(raw, time.perf_counter() - t0)

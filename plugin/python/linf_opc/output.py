@@ -56,6 +56,7 @@ def summary(diagram, dbu, **extra):
         "counts": diagram.counts(),
         "check": {k: v for k, v in diagram.check.items() if k != "messages"},
         "seconds": diagram.seconds,
+        "tiles": diagram.tiles,
     }
     s.update(extra)
     return s

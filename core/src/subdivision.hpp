@@ -1,0 +1,484 @@
+// The box subdivision behind the builder (builder.hpp): a box keeps the sites that can own
+// a point of it, and is quartered until few remain; then it is solved directly in convex
+// cells where every distance function is affine. Internal to the builder; one Model per
+// tile of sites, one Builder per worker thread.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <tuple>
+#include <vector>
+
+#include <boost/container/small_vector.hpp>
+
+#include "affine.hpp"
+#include "cell.hpp"
+#include "linf/builder.hpp"
+
+namespace linf::detail {
+
+
+inline Affine minus(const Affine& p, const Affine& q) { return {p.a - q.a, p.b - q.b, p.c - q.c}; }
+
+// The largest value of a convex function over a box is at a corner.
+inline double max_over(const DistFn& f, const Box& b) {
+  return std::max({f.at(b.x1, b.y1), f.at(b.x2, b.y1), f.at(b.x2, b.y2), f.at(b.x1, b.y2)});
+}
+
+// The four quarters of a box, the subdivision step.
+inline std::array<Box, 4> quarters(const Box& b) {
+  const double mx = 0.5 * (b.x1 + b.x2), my = 0.5 * (b.y1 + b.y2);
+  return {Box{b.x1, b.y1, mx, my}, Box{mx, b.y1, b.x2, my}, Box{b.x1, my, mx, b.y2}, Box{mx, my, b.x2, b.y2}};
+}
+
+// Liang-Barsky: the parameter interval [t0, t1] of the segment p + t (q - p), t in [0, 1],
+// inside the closed box; false if the segment misses it.
+inline bool clip_to_box(double px, double py, double qx, double qy, const Box& b, double& t0, double& t1) {
+  t0 = 0, t1 = 1;
+  const double dx = qx - px, dy = qy - py;
+  auto edge = [&](double p, double q) {
+    if (p == 0) return q >= 0;
+    const double r = q / p;
+    if (p < 0) { if (r > t1) return false; t0 = std::max(t0, r); }
+    else { if (r < t0) return false; t1 = std::min(t1, r); }
+    return true;
+  };
+  return edge(-dx, px - b.x1) && edge(dx, b.x2 - px) && edge(-dy, py - b.y1) && edge(dy, b.y2 - py);
+}
+
+// L-inf distance between a closed box and a site: zero if they meet, else attained at a vertex
+// of one of them (both are convex polygons and the unit ball is a polygon).
+// The same holds for L1, whose breakpoints along a segment are only the axis crossings.
+inline double box_distance(const Box& b, const Site& s, bool l1 = false) {
+  auto point_to_box = [&](double x, double y) {
+    const double ex = std::max({b.x1 - x, x - b.x2, 0.0}), ey = std::max({b.y1 - y, y - b.y2, 0.0});
+    return l1 ? ex + ey : std::max(ex, ey);
+  };
+  const double ax = double(s.a.x), ay = double(s.a.y), bx = double(s.b.x), by = double(s.b.y);
+  double d = std::min(point_to_box(ax, ay), point_to_box(bx, by));
+  if (s.is_point() || d == 0) return d;
+  double t0, t1;
+  if (clip_to_box(ax, ay, bx, by, b, t0, t1)) return 0;
+  const double dx = bx - ax, dy = by - ay;
+  auto point_to_seg = [&](double x, double y) {
+    const double ux = x - ax, uy = y - ay;
+    auto f = [&](double t) {
+      t = std::clamp(t, 0.0, 1.0);
+      const double ex = std::fabs(ux - t * dx), ey = std::fabs(uy - t * dy);
+      return l1 ? ex + ey : std::max(ex, ey);
+    };
+    double m = std::min(f(0), f(1));
+    if (dx != 0) m = std::min(m, f(ux / dx));
+    if (dy != 0) m = std::min(m, f(uy / dy));
+    if (l1) return m;
+    if (dx != dy) m = std::min(m, f((ux - uy) / (dx - dy)));
+    if (dx != -dy) m = std::min(m, f((ux + uy) / (dx + dy)));
+    return m;
+  };
+  d = std::min({d, point_to_seg(b.x1, b.y1), point_to_seg(b.x2, b.y1), point_to_seg(b.x2, b.y2),
+                point_to_seg(b.x1, b.y2)});
+  return d;
+}
+
+struct LocalCell {
+  Cell cell;
+  // Active piece of f / g per local site, -1 unknown; inline for the usual few sites.
+  boost::container::small_vector<signed char, 16> af, ag;
+};
+
+// The sites of one tile and their distance functions, shared read-only by the workers.
+// Local ids run in the order of the global ids (`global`), so every decision that compares
+// site indices (the tie rule) is the same in any tile.
+struct Model {
+  std::vector<Site> S;
+  std::vector<int> global;
+  BuildOptions opt;
+  std::vector<DistFn> f, g;  // L-inf, and the L1 tie-break
+  double tau = 0;            // rounding allowance in pruning decisions, the same in every tile
+  Model(const std::vector<Site>& all, std::vector<int> ids, const BuildOptions& o, double tau_)
+      : global(std::move(ids)), opt(o), tau(tau_) {
+    S.reserve(global.size());
+    f.reserve(global.size());
+    g.reserve(global.size());
+    for (int i : global) {
+      const Site& t = all[i];
+      S.push_back(t);
+      f.push_back(make_distfn(t, Norm::Linf));
+      g.push_back(make_distfn(t, Norm::L1));
+    }
+  }
+};
+
+// One worker: boxes in, raw pieces out. Boxes are independent, so workers run side by side.
+class Builder {
+ public:
+  Builder(const Model& m, const Box& root, const Box* hole)
+      : S_(m.S), clip_(root), hole_(hole ? *hole : Box{1, 1, -1, -1}), has_hole_(hole != nullptr), opt_(m.opt),
+        f_(m.f), g_(m.g), tau_(m.tau) {}
+
+  // The sites that can own a point of b, from a superset `cand`.
+  std::vector<int> candidates(const Box& b, const std::vector<int>& cand) const {
+    double U = INFINITY;
+    for (int t : cand) U = std::min(U, max_over(f_[t], b));
+    std::vector<int> keep;
+    keep.reserve(cand.size());
+    for (int t : cand)
+      if (box_distance(b, S_[t]) <= U + tau_) keep.push_back(t);
+    if (keep.size() > 2) prune_ties(b, keep);
+    return keep;
+  }
+
+  void process(const Box& b, const std::vector<int>& cand) {
+    if (has_hole_ && b.x1 >= hole_.x1 && b.x2 <= hole_.x2 && b.y1 >= hole_.y1 && b.y2 <= hole_.y2) return;
+    ++stats.boxes;
+    const std::vector<int> keep = candidates(b, cand);
+    if (keep.size() <= 1) return;
+    const double w = std::max(b.x2 - b.x1, b.y2 - b.y1);
+    // Far from the sites whole groups tie in L-inf (a two-dimensional bisector region) and the
+    // count never drops; there the functions are affine over the box, so a direct solve is cheap.
+    if (int(keep.size()) <= opt_.local_sites || w <= opt_.min_box ||
+        (int(keep.size()) <= opt_.affine_sites && bent(b, keep) <= opt_.bent_sites)) {
+      solve(b, keep);
+      return;
+    }
+    for (const Box& q : quarters(b)) process(q, keep);
+  }
+
+  BuildStats stats;
+  std::vector<Piece> out;
+
+ private:
+  // Far from the sites, whole groups share one affine L-inf function over the box (a
+  // two-dimensional bisector region) and the count never drops by subdividing. Inside such a
+  // group only the L1 tie-break decides, so members that lose on it everywhere in the box
+  // are dropped.
+  void prune_ties(const Box& b, std::vector<int>& C) const {
+    struct Entry { double a, b, c; int t; };
+    std::vector<Entry> flat;
+    std::vector<int> rest;
+    for (int t : C) {
+      const int j = affine_piece(f_[t], b);
+      if (j < 0) { rest.push_back(t); continue; }
+      const Affine& p = f_[t].piece[j];
+      flat.push_back({p.a, p.b, p.c, t});
+    }
+    if (flat.size() < 2) return;
+    std::sort(flat.begin(), flat.end(), [](const Entry& x, const Entry& y) {
+      return std::tie(x.a, x.b, x.c, x.t) < std::tie(y.a, y.b, y.c, y.t);
+    });
+    for (std::size_t g0 = 0; g0 < flat.size();) {
+      std::size_t g1 = g0 + 1;
+      while (g1 < flat.size() && flat[g1].a == flat[g0].a && flat[g1].b == flat[g0].b && flat[g1].c == flat[g0].c) ++g1;
+      if (g1 - g0 == 1) { rest.push_back(flat[g0].t); g0 = g1; continue; }
+      double U = INFINITY;
+      for (std::size_t i = g0; i < g1; ++i) U = std::min(U, max_over(g_[flat[i].t], b));
+      // Members with identical L1 pieces are all kept: they may part just outside the box,
+      // and the owner beyond a box side must be among the candidates.
+      for (std::size_t i = g0; i < g1; ++i)
+        if (box_distance(b, S_[flat[i].t], true) <= U + tau_) rest.push_back(flat[i].t);
+      g0 = g1;
+    }
+    std::sort(rest.begin(), rest.end());
+    C.swap(rest);
+  }
+
+  // The piece of f that is the maximum at every corner of the box, or -1.
+  static int affine_piece(const DistFn& f, const Box& b) {
+    const int j = f.argmax(b.x1, b.y1);
+    if (f.argmax(b.x2, b.y1) != j || f.argmax(b.x2, b.y2) != j || f.argmax(b.x1, b.y2) != j) return -1;
+    return j;
+  }
+
+  // How many sites' distance functions are not affine over the box (argmax differs at corners).
+  int bent(const Box& b, const std::vector<int>& C) const {
+    int n = 0;
+    for (int t : C) n += affine_piece(f_[t], b) < 0;
+    return n;
+  }
+
+  // Splits `cells` so that site `fn` is affine on each; `act` selects af or ag.
+  static void split_by(std::vector<LocalCell>& cells, const DistFn& fn, std::size_t k, bool use_g) {
+    std::vector<LocalCell> next;
+    next.reserve(cells.size());
+    for (LocalCell& lc : cells) {
+      auto& act = use_g ? lc.ag : lc.af;
+      int j = fn.argmax(lc.cell.v[0].x, lc.cell.v[0].y);
+      bool affine = true;
+      for (const Vec2& p : lc.cell.v) {
+        const double top = fn.at(p.x, p.y);
+        if (fn.piece[j].at(p.x, p.y) < top - 16 * fn.piece[j].err(p.x, p.y)) { affine = false; break; }
+      }
+      if (affine) {
+        act[k] = static_cast<signed char>(j);
+        next.push_back(std::move(lc));
+        continue;
+      }
+      for (int jj = 0; jj < fn.n; ++jj) {
+        Cell c = lc.cell;
+        for (int i = 0; i < fn.n && !c.empty(); ++i)
+          if (i != jj) c = detail::clip(c, minus(fn.piece[jj], fn.piece[i]));
+        if (c.empty()) continue;
+        LocalCell sub{std::move(c), lc.af, lc.ag};
+        (use_g ? sub.ag : sub.af)[k] = static_cast<signed char>(jj);
+        next.push_back(std::move(sub));
+      }
+    }
+    cells.swap(next);
+  }
+
+  void solve(const Box& b, const std::vector<int>& C) {
+    const std::size_t k = C.size();
+    ++stats.solves;
+    stats.solved_sites += k;
+    std::vector<LocalCell> cells(1);
+    cells[0].cell = detail::box_cell(b);
+    cells[0].af.assign(k, -1);
+    cells[0].ag.assign(k, -1);
+    for (std::size_t i = 0; i < k; ++i) split_by(cells, f_[C[i]], i, false);
+    stats.cells += cells.size();
+
+    for (LocalCell& lc : cells) {
+      // Sites whose L-inf pieces coincide here need the L1 tie-break, hence affine L1 pieces.
+      std::vector<LocalCell> sub{lc};
+      std::vector<char> tied(k, 0);
+      for (std::size_t i = 0; i < k; ++i)
+        for (std::size_t j = i + 1; j < k; ++j)
+          if (detail::same_affine(f_[C[i]].piece[lc.af[i]], f_[C[j]].piece[lc.af[j]])) tied[i] = tied[j] = 1;
+      for (std::size_t i = 0; i < k; ++i)
+        if (tied[i]) split_by(sub, g_[C[i]], i, true);
+      for (const LocalCell& c : sub) regions(c, C);
+    }
+  }
+
+  // Does local site i come before j where both are affine as in `lc`? Returns the half-plane
+  // (h >= 0 where i wins) or, for a constant decision, sets `always`.
+  bool compare(const LocalCell& lc, const std::vector<int>& C, std::size_t i, std::size_t j, Affine& h,
+               int& always) const {
+    const Affine& fi = f_[C[i]].piece[lc.af[i]];
+    const Affine& fj = f_[C[j]].piece[lc.af[j]];
+    if (!detail::same_affine(fi, fj)) { h = minus(fj, fi); return true; }
+    const Affine& gi = g_[C[i]].piece[lc.ag[i]];
+    const Affine& gj = g_[C[j]].piece[lc.ag[j]];
+    if (!detail::same_affine(gi, gj)) { h = minus(gj, gi); return true; }
+    always = rank_before(C[i], C[j]) ? 1 : 0;
+    return false;
+  }
+
+  bool rank_before(int a, int b) const {
+    const bool pa = S_[a].is_point(), pb = S_[b].is_point();
+    if (pa != pb) return pa;
+    return a < b;
+  }
+
+  void regions(const LocalCell& lc, const std::vector<int>& C) {
+    const std::size_t k = C.size();
+    // Clip first by the sites nearest at the cell's centre: most regions vanish at once.
+    Vec2 c{0, 0};
+    for (const Vec2& v : lc.cell.v) c.x += v.x, c.y += v.y;
+    c.x /= double(lc.cell.v.size()), c.y /= double(lc.cell.v.size());
+    std::vector<std::pair<double, std::size_t>> order(k);
+    for (std::size_t j = 0; j < k; ++j) order[j] = {f_[C[j]].piece[lc.af[j]].at(c.x, c.y), j};
+    std::sort(order.begin(), order.end());
+    for (std::size_t i = 0; i < k; ++i) {
+      Cell r = lc.cell;
+      for (const auto& oj : order) {
+        const std::size_t j = oj.second;
+        if (j == i) continue;
+        Affine h;
+        int always = -1;
+        if (compare(lc, C, i, j, h, always)) {
+          if (!detail::clip_in_place(r, h)) break;
+        } else if (!always) {
+          r = Cell{};
+          break;
+        }
+      }
+      if (r.empty()) continue;
+      emit(r, lc, i, C);
+    }
+  }
+
+  // Restriction of an affine piece to the edge p + s (q - p): value at s = 0 and slope.
+  struct Line { double v, d; };
+  static Line along(const Affine& a, const Vec2& p, const Vec2& q) {
+    const double v = a.at(p.x, p.y);
+    return {v, a.at(q.x, q.y) - v};
+  }
+  // A distance function restricted to an edge: a convex piecewise-linear function of s on
+  // [0, 1], kept as its breakpoints and the line active after each.
+  struct Profile {
+    std::vector<double> at;  // at[0] = 0 < at[1] < ... < 1
+    std::vector<Line> line;
+  };
+  static Profile profile(const DistFn& f, const Vec2& p, const Vec2& q) {
+    Line L[6];
+    for (int i = 0; i < f.n; ++i) L[i] = along(f.piece[i], p, q);
+    Profile pr;
+    double s = 0;
+    int cur = 0;
+    for (int i = 1; i < f.n; ++i) {  // highest at 0, the steepest among ties
+      const double vi = L[i].v, vc = L[cur].v;
+      if (vi > vc || (vi == vc && L[i].d > L[cur].d)) cur = i;
+    }
+    for (;;) {
+      pr.at.push_back(s), pr.line.push_back(L[cur]);
+      int nxt = -1;
+      double ns = 1;
+      for (int i = 0; i < f.n; ++i) {  // the first steeper line to overtake
+        if (L[i].d <= L[cur].d) continue;
+        const double x = (L[cur].v - L[i].v) / (L[i].d - L[cur].d);
+        if (x > s + 1e-12 && x < ns) ns = x, nxt = i;
+      }
+      if (nxt < 0 || ns >= 1 - 1e-12) break;
+      s = ns, cur = nxt;
+    }
+    return pr;
+  }
+  // Interior parameters where the owner order of two profiles can change: the breakpoints
+  // of both and the places where they cross.
+  static void crossings(const Profile& A, const Profile& B, std::vector<double>& out) {
+    std::vector<double> bs(A.at.begin() + 1, A.at.end());
+    bs.insert(bs.end(), B.at.begin() + 1, B.at.end());
+    out.insert(out.end(), bs.begin(), bs.end());
+    bs.push_back(0), bs.push_back(1);
+    std::sort(bs.begin(), bs.end());
+    std::size_t ia = 0, ib = 0;
+    for (std::size_t k = 0; k + 1 < bs.size(); ++k) {
+      const double lo = bs[k], hi = bs[k + 1];
+      if (hi - lo <= 1e-12) continue;
+      const double mid = 0.5 * (lo + hi);
+      while (ia + 1 < A.at.size() && A.at[ia + 1] <= mid) ++ia;
+      while (ib + 1 < B.at.size() && B.at[ib + 1] <= mid) ++ib;
+      const Line &a = A.line[ia], &b = B.line[ib];
+      if (a.d == b.d) continue;
+      const double x = (b.v - a.v) / (a.d - b.d);
+      if (x > lo && x < hi) out.push_back(x);
+    }
+  }
+
+  void emit(const Cell& r, const LocalCell& lc, std::size_t ti, const std::vector<int>& C) {
+    const int t = C[ti];
+    const Affine& ft = f_[t].piece[lc.af[ti]];
+    const std::size_t n = r.v.size();
+    for (std::size_t e = 0; e < n; ++e) {
+      const Vec2 p = r.v[e], q = r.v[(e + 1) % n];
+      if (std::hypot(q.x - p.x, q.y - p.y) <= 1e-9) continue;
+      const Vec2 nrm{q.y - p.y, p.x - q.x};
+      const Vec2 m{0.5 * (p.x + q.x), 0.5 * (p.y + q.y)};
+      if ((nrm.x < 0 && m.x <= clip_.x1) || (nrm.x > 0 && m.x >= clip_.x2) || (nrm.y < 0 && m.y <= clip_.y1) ||
+          (nrm.y > 0 && m.y >= clip_.y2))
+        continue;
+      // The neighbour is found from this side, not from the clip that made the edge: where several
+      // sites tie in L-inf their bisector lines coincide, and the owner beyond can change
+      // along the edge where the L1 tie-break changes, that is at crossings of the tied
+      // sites' L1 profiles.
+      // Within the cell every L-inf function is affine, so a site ties with t along the whole
+      // edge iff it does at both ends, and no L-inf piece changes along the edge's interior.
+      // The cell is closed, so the active pieces give every function's value at its vertices.
+      const double ftp = ft.at(p.x, p.y), ftq = ft.at(q.x, q.y);
+      boost::container::small_vector<int, 8> tied{t};
+      for (std::size_t j = 0; j < C.size(); ++j) {
+        if (j == ti) continue;
+        const Affine& fu = f_[C[j]].piece[lc.af[j]];
+        if (std::fabs(fu.at(p.x, p.y) - ftp) <= tol(p) && std::fabs(fu.at(q.x, q.y) - ftq) <= tol(q))
+          tied.push_back(C[j]);
+      }
+      if (tied.size() == 1) continue;  // a split inside t's own region
+      // Only sites that also share the least slope across the edge go to the L1 tie-break.
+      const double len = std::hypot(nrm.x, nrm.y);
+      const Vec2 un{nrm.x / len, nrm.y / len};
+      std::vector<double> sl(tied.size());
+      double smin = INFINITY;
+      for (std::size_t i = 0; i < tied.size(); ++i)
+        smin = std::min(smin, sl[i] = slope(f_[tied[i]], m, un, f_[tied[i]].at(m.x, m.y), tol(m)));
+      std::vector<Profile> g;
+      for (std::size_t i = 0; i < tied.size(); ++i)
+        if (sl[i] <= smin + 1e-12) g.push_back(profile(g_[tied[i]], p, q));
+      std::vector<double> cuts{0.0, 1.0};
+      if (g.size() > 1)
+        for (std::size_t i = 0; i < g.size(); ++i)
+          for (std::size_t j = i + 1; j < g.size(); ++j) crossings(g[i], g[j], cuts);
+      std::sort(cuts.begin(), cuts.end());
+      for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+        if (cuts[i + 1] - cuts[i] <= 1e-9) continue;
+        const Vec2 a{p.x + cuts[i] * (q.x - p.x), p.y + cuts[i] * (q.y - p.y)};
+        const Vec2 b{p.x + cuts[i + 1] * (q.x - p.x), p.y + cuts[i + 1] * (q.y - p.y)};
+        emit_piece(a, b, t, owner_beyond({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, nrm, C));
+      }
+    }
+  }
+
+  void emit_piece(const Vec2& p, const Vec2& q, int t, int u) {
+    if (u == t || t > u) return;  // no edge, or the other side reports it
+    if (std::fabs(f_[t].at(p.x, p.y) - f_[u].at(p.x, p.y)) > tol(p) ||
+        std::fabs(f_[t].at(q.x, q.y) - f_[u].at(q.x, q.y)) > tol(q))
+      return;
+    double t0, t1;  // the far-field pass keeps only what lies outside the inner box
+    if (has_hole_ && clip_to_box(p.x, p.y, q.x, q.y, hole_, t0, t1) && t1 > t0) {
+      const double dx = q.x - p.x, dy = q.y - p.y;
+      const Vec2 a{p.x + t0 * dx, p.y + t0 * dy}, b{p.x + t1 * dx, p.y + t1 * dy};
+      if (t0 > 1e-12) add_piece(p, a, t, u);
+      if (t1 < 1 - 1e-12) add_piece(b, q, t, u);
+      return;
+    }
+    add_piece(p, q, t, u);
+  }
+
+  void add_piece(const Vec2& p, const Vec2& q, int t, int u) {
+    Piece pc;
+    pc.p = p, pc.q = q;
+    pc.a = t, pc.b = u;
+    pc.d1 = f_[t].at(p.x, p.y);
+    pc.d2 = f_[t].at(q.x, q.y);
+    out.push_back(pc);
+  }
+
+  double tol(const Vec2& p) const { return tau_ + 1e-13 * (std::fabs(p.x) + std::fabs(p.y)); }
+
+  static double slope(const DistFn& f, const Vec2& m, const Vec2& d, double value, double tol) {
+    double s = -INFINITY;
+    for (int i = 0; i < f.n; ++i)
+      if (f.piece[i].at(m.x, m.y) >= value - tol) s = std::max(s, f.piece[i].a * d.x + f.piece[i].b * d.y);
+    return s;
+  }
+
+  // The owner just beyond m in direction d: compare distance, its slope along d, then the
+  // L1 tie-break with its slope, then rank.
+  int owner_beyond(const Vec2& m, const Vec2& d, const std::vector<int>& C) const {
+    const double len = std::hypot(d.x, d.y);
+    const Vec2 u{d.x / len, d.y / len};
+    const double tl = tol(m);
+    double fmin = INFINITY;
+    for (int t : C) fmin = std::min(fmin, f_[t].at(m.x, m.y));
+    int best = -1;
+    double bs = 0, bg = 0, bgs = 0;
+    for (int t : C) {
+      const double fv = f_[t].at(m.x, m.y);
+      if (fv > fmin + tl) continue;
+      const double s = slope(f_[t], m, u, fv, tl);
+      const double gv = g_[t].at(m.x, m.y);
+      const double gs = slope(g_[t], m, u, gv, tl);
+      bool better;
+      if (best < 0) better = true;
+      else if (std::fabs(s - bs) > 1e-12) better = s < bs;
+      else if (std::fabs(gv - bg) > tl) better = gv < bg;
+      else if (std::fabs(gs - bgs) > 1e-12) better = gs < bgs;
+      else better = rank_before(t, best);
+      if (better) best = t, bs = s, bg = gv, bgs = gs;
+    }
+    return best;
+  }
+
+
+  const std::vector<Site>& S_;
+  const Box clip_;
+  const Box hole_;
+  const bool has_hole_;
+  const BuildOptions opt_;
+  const std::vector<DistFn>& f_;
+  const std::vector<DistFn>& g_;
+  const double tau_;
+};
+
+
+}  // namespace linf::detail

@@ -1,0 +1,189 @@
+#include "tiles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace linf::detail {
+
+namespace {
+
+// The quadtree boxes of `root` at `level`, by the same halving as the subdivision itself, so
+// that a task is exactly the box the recursion would reach; index j * 2^level + i.
+std::vector<Box> grid_boxes(const Box& root, int level) {
+  std::vector<Box> cur{root};
+  for (int l = 0; l < level; ++l) {
+    const std::size_t n = std::size_t(1) << l, m = 2 * n;
+    std::vector<Box> next(m * m);
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::array<Box, 4> q = quarters(cur[j * n + i]);
+        next[(2 * j) * m + 2 * i] = q[0];
+        next[(2 * j) * m + 2 * i + 1] = q[1];
+        next[(2 * j + 1) * m + 2 * i] = q[2];
+        next[(2 * j + 1) * m + 2 * i + 1] = q[3];
+      }
+    cur.swap(next);
+  }
+  return cur;
+}
+
+// Site ids bucketed by bounding box over a uniform grid of the root (compressed rows).
+class SiteGrid {
+ public:
+  SiteGrid(const std::vector<Site>& s, const Box& root, int level) : s_(s), root_(root), n_(std::size_t(1) << level) {
+    cw_ = (root.x2 - root.x1) / double(n_), ch_ = (root.y2 - root.y1) / double(n_);
+    start_.assign(n_ * n_ + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
+      for (std::size_t t = 0; t < s.size(); ++t) {
+        std::size_t i1, i2, j1, j2;
+        range(box_of(s[t]), 0, i1, i2, j1, j2);
+        for (std::size_t j = j1; j <= j2; ++j)
+          for (std::size_t i = i1; i <= i2; ++i) {
+            if (pass == 0) ++start_[j * n_ + i + 1];
+            else ids_[fill[j * n_ + i]++] = int(t);
+          }
+      }
+      if (pass == 0) {
+        for (std::size_t k = 1; k < start_.size(); ++k) start_[k] += start_[k - 1];
+        ids_.resize(start_.back());
+      }
+    }
+  }
+
+  // Sites whose bounding box comes within L-inf distance r of b (a superset of the sites
+  // within r of b), ascending, each once. `seen` is the caller's scratch, one entry a site.
+  void near(const Box& b, double r, std::vector<int>& out, std::vector<std::uint32_t>& seen,
+            std::uint32_t& stamp) const {
+    out.clear();
+    if (seen.size() != s_.size()) seen.assign(s_.size(), 0), stamp = 0;
+    if (++stamp == 0) std::fill(seen.begin(), seen.end(), 0), stamp = 1;
+    std::size_t i1, i2, j1, j2;
+    range(b, r, i1, i2, j1, j2);
+    for (std::size_t j = j1; j <= j2; ++j)
+      for (std::size_t k = start_[j * n_ + i1]; k < start_[j * n_ + i2 + 1]; ++k) {
+        const int t = ids_[k];
+        if (seen[t] == stamp) continue;
+        seen[t] = stamp;
+        const Box c = box_of(s_[t]);
+        if (std::max({c.x1 - b.x2, b.x1 - c.x2, c.y1 - b.y2, b.y1 - c.y2}) <= r) out.push_back(t);
+      }
+    std::sort(out.begin(), out.end());
+  }
+
+ private:
+  static Box box_of(const Site& t) {
+    return {double(std::min(t.a.x, t.b.x)), double(std::min(t.a.y, t.b.y)), double(std::max(t.a.x, t.b.x)),
+            double(std::max(t.a.y, t.b.y))};
+  }
+  // Buckets meeting b enlarged by r, one bucket of slack for rounding (near() filters exactly).
+  void range(const Box& b, double r, std::size_t& i1, std::size_t& i2, std::size_t& j1, std::size_t& j2) const {
+    auto cell = [&](double v, double lo, double w) {
+      const double k = std::floor((v - lo) / w);
+      return std::size_t(std::clamp(k, 0.0, double(n_ - 1)));
+    };
+    i1 = cell(b.x1 - r, root_.x1, cw_) > 0 ? cell(b.x1 - r, root_.x1, cw_) - 1 : 0;
+    j1 = cell(b.y1 - r, root_.y1, ch_) > 0 ? cell(b.y1 - r, root_.y1, ch_) - 1 : 0;
+    i2 = std::min(n_ - 1, cell(b.x2 + r, root_.x1, cw_) + 1);
+    j2 = std::min(n_ - 1, cell(b.y2 + r, root_.y1, ch_) + 1);
+  }
+
+  const std::vector<Site>& s_;
+  Box root_;
+  std::size_t n_;
+  double cw_ = 1, ch_ = 1;
+  std::vector<std::size_t> start_;
+  std::vector<int> ids_;
+};
+
+// The task's halo: every site that can own a point of b. With U the least upper bound of the
+// distance over b among the sites found, every owner lies within U of b; the search radius
+// grows to U (+ the rounding allowance) until it covers it. The site attaining U is then
+// found too, so the builder's first pruning gives what it gives with every site.
+void gather(const SiteGrid& grid, const std::vector<Site>& sites, const Box& b, const Box& root, double tau,
+            std::vector<int>& out, std::vector<std::uint32_t>& seen, std::uint32_t& stamp) {
+  double r = std::max(b.x2 - b.x1, b.y2 - b.y1);
+  const double span = std::max(root.x2 - root.x1, root.y2 - root.y1);
+  for (;;) {
+    grid.near(b, r, out, seen, stamp);
+    if (out.empty()) {
+      if (r > 2 * span) return;  // no sites at all
+      r *= 2;
+      continue;
+    }
+    double U = INFINITY;
+    for (int t : out) U = std::min(U, max_over(make_distfn(sites[t], Norm::Linf), b));
+    if (U + tau <= r) return;
+    r = U + tau;
+  }
+}
+
+// Task level: a few hundred sites a task on average, from the site count only (never from
+// the tile size): enough tasks to share among threads, few enough that gathering is cheap.
+int task_level(std::size_t n) {
+  int level = 2;
+  while (level < 10 && (std::size_t(1) << (2 * level)) * 256 < n) ++level;
+  return level;
+}
+
+constexpr std::size_t kAutoTileSites = std::size_t(1) << 18;
+
+}  // namespace
+
+std::vector<Piece> build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau,
+                               BuildStats& st) {
+  const int T = task_level(sites.size());
+  const std::size_t nt = std::size_t(1) << T;
+  int Lt = 0;  // tile level: the coarsest whose boxes are no larger than the tile size
+  const double side = std::max(root.x2 - root.x1, root.y2 - root.y1);
+  if (opt.tile_size > 0)
+    while (Lt < T && side / double(std::size_t(1) << Lt) > opt.tile_size) ++Lt;
+  else if (opt.tile_size < 0)  // automatic: about kAutoTileSites sites a tile
+    while (Lt < T && (std::size_t(1) << (2 * Lt)) * kAutoTileSites < sites.size()) ++Lt;
+  const std::size_t per = std::size_t(1) << (T - Lt), ntiles = std::size_t(1) << Lt;
+  const std::vector<Box> tasks = grid_boxes(root, T);
+  const SiteGrid grid(sites, root, T + 1);  // buckets finer than tasks: tighter halos
+
+  std::vector<Piece> raw;
+  std::vector<std::vector<int>> halo(per * per);
+  struct Scratch { std::vector<std::uint32_t> seen; std::uint32_t stamp = 0; };
+  std::vector<Scratch> scratch(worker_count(per * per, opt.threads));
+  std::vector<int> local(sites.size(), -1);  // global id -> id in the current tile
+  for (std::size_t tj = 0; tj < ntiles; ++tj)
+    for (std::size_t ti = 0; ti < ntiles; ++ti) {
+      auto task_of = [&](std::size_t k) { return (tj * per + k / per) * nt + ti * per + k % per; };
+      parallel_for(per * per, opt.threads, [&](unsigned w, std::size_t k) {
+        gather(grid, sites, tasks[task_of(k)], root, tau, halo[k], scratch[w].seen, scratch[w].stamp);
+      });
+      std::vector<int> ids;
+      for (auto& h : halo)
+        for (int t : h)
+          if (local[t] < 0) local[t] = 0, ids.push_back(t);
+      std::sort(ids.begin(), ids.end());
+      for (std::size_t i = 0; i < ids.size(); ++i) local[ids[i]] = int(i);
+      for (auto& h : halo)
+        for (int& t : h) t = local[t];
+      for (int t : ids) local[t] = -1;
+      if (ids.size() < 2) continue;
+      const Model model(sites, std::move(ids), opt, tau);
+      std::vector<Builder> workers(worker_count(per * per, opt.threads), Builder(model, root, nullptr));
+      parallel_for(per * per, opt.threads, [&](unsigned w, std::size_t k) {
+        workers[w].process(tasks[task_of(k)], halo[k]);
+      });
+      for (Builder& w : workers) {
+        for (Piece p : w.out) {
+          p.a = model.global[p.a], p.b = model.global[p.b];
+          raw.push_back(p);
+        }
+        st.boxes += w.stats.boxes, st.solves += w.stats.solves, st.solved_sites += w.stats.solved_sites;
+        st.cells += w.stats.cells;
+      }
+      ++st.tiles;
+      st.tasks += per * per;
+      st.largest_tile_sites = std::max(st.largest_tile_sites, model.S.size());
+    }
+  return raw;
+}
+
+}  // namespace linf::detail

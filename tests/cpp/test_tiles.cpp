@@ -1,0 +1,100 @@
+// Tiles: the diagram built tile by tile is the diagram built in one piece, bit for bit, and a
+// tile holds only the sites near it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <tuple>
+
+#include "linf/builder.hpp"
+#include "linf/diagram.hpp"
+#include "linf/sites.hpp"
+#include "layouts.hpp"
+
+using namespace linf;
+
+namespace {
+
+// A block of many small random layouts side by side: thousands of sites, so that the task
+// grid has several levels to group into tiles.
+std::vector<Polygon> block(std::uint64_t seed, linf::testing::Style style, int nx, int ny) {
+  std::vector<Polygon> all;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      for (Polygon p : linf::testing::random_layout(seed * 1000 + std::uint64_t(j * nx + i), style, 8, 300)) {
+        for (Point& v : p.outer) v.x += 400 * i, v.y += 400 * j;
+        for (Ring& h : p.holes)
+          for (Point& v : h) v.x += 400 * i, v.y += 400 * j;
+        all.push_back(p);
+      }
+  return all;
+}
+
+using Key = std::tuple<int, int, double, double, double, double, double, double>;
+
+std::vector<Key> keys(const std::vector<Piece>& v) {
+  std::vector<Key> k;
+  for (const Piece& p : v) k.emplace_back(p.a, p.b, p.p.x, p.p.y, p.q.x, p.q.y, p.d1, p.d2);
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+}  // namespace
+
+TEST(Tiles, SamePiecesForEveryTileSize) {
+  const linf::testing::Style styles[] = {linf::testing::Style::Rectilinear, linf::testing::Style::Octilinear,
+                                         linf::testing::Style::AnyAngle};
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    const Sites s = sites_of_polygons(merge_polygons(block(seed, styles[seed % 3], 12, 10)));
+    const Box clip = clip_box(s);
+    BuildOptions whole;
+    whole.threads = 2;
+    BuildStats st_whole;
+    const std::vector<Key> ref = keys(build_pieces(s, clip, whole, &st_whole));
+    EXPECT_EQ(st_whole.tiles, 1u);
+    ASSERT_GE(st_whole.tasks, 64u) << "the block should need several task levels";
+    const double side = std::max(clip.x2 - clip.x1, clip.y2 - clip.y1) / 3;  // the sites' box, about
+    for (double frac : {0.5, 0.2, 0.01}) {
+      BuildOptions tiled = whole;
+      tiled.tile_size = frac * side;
+      tiled.threads = frac < 0.2 ? 1 : 2;
+      BuildStats st;
+      const std::vector<Key> got = keys(build_pieces(s, clip, tiled, &st));
+      EXPECT_GT(st.tiles, 1u) << "tile " << tiled.tile_size;
+      EXPECT_EQ(st.tasks, st_whole.tasks);
+      // A tile holds its own sites and its halo, not the layer.
+      if (frac < 0.2) EXPECT_LT(st.largest_tile_sites, s.sites.size() / 2) << "tile " << tiled.tile_size;
+      ASSERT_EQ(got.size(), ref.size()) << "seed " << seed << " tile " << tiled.tile_size;
+      for (std::size_t i = 0; i < got.size(); ++i) ASSERT_EQ(got[i], ref[i]) << "seed " << seed << " piece " << i;
+    }
+  }
+}
+
+TEST(Tiles, TiledDiagramPassesTheChecker) {
+  DiagramOptions o;
+  o.build.tile_size = 500;
+  o.checker.crossing_pairs = 4000;
+  const Result r = voronoi_of_polygons(block(7, linf::testing::Style::Octilinear, 8, 8), o);
+  EXPECT_TRUE(r.check.ok());
+  EXPECT_GT(r.diagram.pieces.size(), 1000u);
+}
+
+TEST(Tiles, IsolatedShapesFarApart) {
+  // Tasks far from every site must still find their owners (the halo grows until it does).
+  std::vector<Polygon> p{linf::testing::box(0, 0, 10, 10), linf::testing::box(100000, 0, 100010, 10),
+                         linf::testing::box(0, 90000, 10, 90010)};
+  for (Polygon q : linf::testing::random_layout(5, linf::testing::Style::Rectilinear, 40, 2000)) {
+    for (Point& v : q.outer) v.x += 50000, v.y += 50000;
+    for (Ring& h : q.holes)
+      for (Point& v : h) v.x += 50000, v.y += 50000;
+    p.push_back(q);
+  }
+  const Sites s = sites_of_polygons(merge_polygons(p));
+  BuildOptions whole, tiled;
+  tiled.tile_size = 3000;
+  const Box clip = clip_box(s);
+  EXPECT_EQ(keys(build_pieces(s, clip, whole)), keys(build_pieces(s, clip, tiled)));
+  DiagramOptions o;
+  o.build = tiled;
+  EXPECT_TRUE(voronoi_of_polygons(p, o).check.ok());
+}
