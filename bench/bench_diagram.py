@@ -16,7 +16,7 @@ sys.path.insert(0, os.path.join(repo, "plugin", "python"))
 
 import pya  # noqa: E402
 
-from linf_opc import core, diagram, layout, output  # noqa: E402
+from linf_opc import diagram, layout  # noqa: E402
 
 g = globals()
 path = g.get("input") or os.path.join(repo, "..", "shared", "data", "freepdk45", "sram_8_128_freepdk45.gds")
@@ -29,12 +29,10 @@ li = ly.find_layer(L, D)
 t0 = time.perf_counter()
 polygons = layout.polygons_of(layout.region_of(cell, li))
 t_read = time.perf_counter() - t0
-d = diagram.compute(polygons)
-t0 = time.perf_counter()
 with tempfile.TemporaryDirectory() as tmp:
-    output.write_csv(d, os.path.join(tmp, "voronoi.csv"), ly.dbu)
-t_write = time.perf_counter() - t0
-whole = t_read + d.seconds["total"] + t_write
+    d = diagram.compute(polygons, csv_path=os.path.join(tmp, "voronoi.csv"), dbu=ly.dbu)
+t_write = d.seconds["csv"]
+whole = t_read + d.seconds["total"]
 
 # CGAL in its own process with a deadline: it can hang or crash (foundation issue). Original segment
 # order first (seed 0), then shuffled orders.

@@ -1,7 +1,9 @@
 # One input of bench/bench_flow.py, in its own KLayout process (so that its peak memory is its
 # own): prints one JSON line with the stage times, counts and peak memory.
 #   klayout -b -r bench/flow_one.py -rd input=FILE|generated:N -rd layer=L/D [-rd cell=NAME]
-#           [-rd markers=SPEC] [-rd threads=N] [-rd drc=1]
+#           [-rd markers=SPEC] [-rd threads=N] [-rd tile=DBU] [-rd drc=1] [-rd polygons_json=FILE]
+# tile: the builder's tile side in DBU (default -1, automatic; 0 one tile). polygons_json: also
+# write the merged polygons there, for CGAL's construction in another process.
 import json
 import os
 import random
@@ -56,8 +58,12 @@ region = layout.region_of(cell, li)
 polygons = layout.polygons_of(region)
 t["load"] = time.perf_counter() - t0
 threads = int(g.get("threads") or 0)
+tile = float(g.get("tile") or -1)
+if g.get("polygons_json"):
+    with open(g["polygons_json"], "w") as f:
+        json.dump(polygons, f)
 t0 = time.perf_counter()
-raw = core.gauges_polygons(polygons, True, 2000, threads)
+raw = core.gauges_polygons(polygons, True, 2000, threads, tile=tile)
 t["diagram_and_gauges"] = time.perf_counter() - t0
 t["diagram"] = raw["diagram"]["seconds"]["merge"] + raw["diagram"]["seconds"]["build"] + raw["diagram"]["seconds"]["check"]
 t["gauges"] = raw["diagram"]["seconds"]["gauges"]
@@ -78,7 +84,8 @@ sp = split.stratified(split.patterns_of(st.runs[("A", 7)], gs, ms))
 t["split"] = time.perf_counter() - t0
 out = {"input": os.path.basename(g["input"]), "polygons": len(polygons), "sites": raw["diagram"]["sites"],
        "segments": sum(len(o) + sum(len(h) for h in hs) for o, hs in polygons), "gauges": len(gs),
-       "markers": len(ms), "patterns": len(sp.patterns), "seconds": t, "threads": threads}
+       "markers": len(ms), "patterns": len(sp.patterns), "seconds": t, "threads": threads,
+       "tiles": raw["diagram"]["tiles"]}
 if g.get("drc") == "1":
     w0 = min(x.cd for x in gs if x.type == "internal")
     t0 = time.perf_counter()

@@ -7,6 +7,7 @@
 #include <tuple>
 #include <pybind11/stl.h>
 
+#include "linf/csv.hpp"
 #include "linf/diagram.hpp"
 #include "linf/engine.hpp"
 #include "linf/farthest.hpp"
@@ -63,6 +64,7 @@ py::dict to_python_summary(const Result& r) {
   t["merge"] = d.seconds_merge;
   t["build"] = d.seconds_build;
   t["check"] = d.seconds_check;
+  t["csv"] = d.seconds_csv;
   out["seconds"] = t;
   return out;
 }
@@ -155,23 +157,29 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "voronoi_polygons",
-      [](const PyPolygons& polys, bool check, int pairs, int threads, double tile) {
+      [](const PyPolygons& polys, bool check, int pairs, int threads, double tile, const std::string& csv,
+         double dbu) {
         const std::vector<Polygon> in = polygons_of(polys);
-        return guarded([&] { return voronoi_of_polygons(in, options(check, pairs, threads, tile)); });
+        return guarded([&] {
+          Result r = voronoi_of_polygons(in, options(check, pairs, threads, tile));
+          if (!csv.empty()) write_pieces_csv(r.diagram, dbu, csv);
+          return r;
+        });
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
-      py::arg("tile") = -1.0,
+      py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0,
       "Diagram of polygons [(outer, [holes])], rings as [(x, y)] in integer DBU. Shapes are merged first.\n"
       "Returns {'pieces': [(kind, x1, y1, x2, y2, d1, d2, a_x1, a_y1, a_x2, a_y2, b_x1, b_y1, b_x2, b_y2,\n"
       "site_a, site_b)], 'check': {...}, 'sites': n, 'clip': box, 'seconds': {...}}.\n"
       "threads: worker threads of the builder, 0 for one per core.\n"
       "tile: side of the builder's tiles in DBU (same diagram for every size); 0 one tile, < 0 automatic.\n"
+      "csv: also write the pieces there (voronoi.csv, micrometres: DBU times dbu).\n"
       "Raises DiagramError if the independent checker rejects the diagram.");
 
   m.def(
       "gauges_polygons",
       [](const PyPolygons& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
-         bool with_pieces, bool with_paths, double tile) {
+         bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu) {
         const std::vector<Polygon> in = polygons_of(polys);
         Result r;
         Gauges g;
@@ -179,6 +187,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
         {
           py::gil_scoped_release unlocked;
           r = voronoi_of_polygons(in, options(check, pairs, threads, tile));
+          if (!csv.empty()) write_pieces_csv(r.diagram, dbu, csv);
           const auto t0 = std::chrono::steady_clock::now();
           GaugeOptions o;
           o.tooth_fraction = tooth_fraction;
@@ -190,7 +199,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false, py::arg("paths") = false,
-      py::arg("tile") = -1.0,
+      py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0,
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
       "Returns {'gauges': [(type, x1, y1, x2, y2, cx, cy, cd, score, norm_score, tiebreak, rank, teeth,\n"
       "(a_x1, a_y1, a_x2, a_y2), (b_x1, b_y1, b_x2, b_y2), site_a, site_b, [stretch path (x, y)] if paths=True else None)] in rank order, 'stretches': n,\n"

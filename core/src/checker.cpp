@@ -3,6 +3,8 @@
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 #include <algorithm>
+#include <atomic>
+#include <thread>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -116,34 +118,71 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
     if (rep.messages.size() < 20) rep.messages.push_back(msg);
   };
 
+  // Pieces are sampled in chunks on the worker threads, each into its own report; the reports
+  // are merged in chunk order, so the messages do not depend on the threads.
   const int k = std::max(2, opt.samples_per_piece);
-  for (const Piece& pc : d.pieces) {
-    for (int i = 0; i < k; ++i) {
-      const double t = double(i) / double(k - 1);
-      const double x = pc.p.x + t * (pc.q.x - pc.p.x), y = pc.p.y + t * (pc.q.y - pc.p.y);
-      const double da = dist_site(x, y, S[pc.a]), db = dist_site(x, y, S[pc.b]);
-      ++rep.sampled_points;
-      rep.worst_error = std::max(rep.worst_error, std::fabs(da - db));
-      std::ostringstream where;
-      where.precision(12);
-      where << "(" << x << "," << y << ") owners " << pc.a << "," << pc.b << " da=" << da << " db=" << db;
-      if (std::fabs(da - db) > tol) fail(rep.equidistance_errors, "not equidistant at " + where.str());
-      if (i == 0 || i == k - 1) {
-        const double stated = i == 0 ? pc.d1 : pc.d2;
-        rep.worst_error = std::max(rep.worst_error, std::fabs(stated - da));
-        if (std::fabs(stated - da) > tol) fail(rep.clearance_errors, "wrong clearance at " + where.str());
-      }
-      const double dmin = std::min(da, db);
-      std::int32_t closer = -1;
-      double dc = 0;
-      sites.within(x, y, dmin - tol, [&](std::int32_t s, double ds) { closer = s, dc = ds; });
-      if (closer >= 0) {
-        rep.worst_error = std::max(rep.worst_error, dmin - dc);
-        std::ostringstream m;
-        m << "site " << closer << " at " << dc << " is closer than the owners at " << where.str();
-        fail(rep.closer_site_errors, m.str());
+  const std::size_t chunk = 4096, nchunks = (d.pieces.size() + chunk - 1) / chunk;
+  std::vector<CheckReport> part(nchunks);
+  auto sample = [&](std::size_t c) {
+    CheckReport& r = part[c];
+    auto bad = [&](std::size_t& counter, const std::string& msg) {
+      ++counter;
+      if (r.messages.size() < 20) r.messages.push_back(msg);
+    };
+    for (std::size_t pi = c * chunk; pi < std::min(d.pieces.size(), (c + 1) * chunk); ++pi) {
+      const Piece& pc = d.pieces[pi];
+      for (int i = 0; i < k; ++i) {
+        const double t = double(i) / double(k - 1);
+        const double x = pc.p.x + t * (pc.q.x - pc.p.x), y = pc.p.y + t * (pc.q.y - pc.p.y);
+        const double da = dist_site(x, y, S[pc.a]), db = dist_site(x, y, S[pc.b]);
+        ++r.sampled_points;
+        r.worst_error = std::max(r.worst_error, std::fabs(da - db));
+        auto where = [&] {  // formatted on failure only: sampling runs by the million
+          std::ostringstream w;
+          w.precision(12);
+          w << "(" << x << "," << y << ") owners " << pc.a << "," << pc.b << " da=" << da << " db=" << db;
+          return w.str();
+        };
+        if (std::fabs(da - db) > tol) bad(r.equidistance_errors, "not equidistant at " + where());
+        if (i == 0 || i == k - 1) {
+          const double stated = i == 0 ? pc.d1 : pc.d2;
+          r.worst_error = std::max(r.worst_error, std::fabs(stated - da));
+          if (std::fabs(stated - da) > tol) bad(r.clearance_errors, "wrong clearance at " + where());
+        }
+        const double dmin = std::min(da, db);
+        std::int32_t closer = -1;
+        double dc = 0;
+        sites.within(x, y, dmin - tol, [&](std::int32_t s, double ds) { closer = s, dc = ds; });
+        if (closer >= 0) {
+          r.worst_error = std::max(r.worst_error, dmin - dc);
+          std::ostringstream m;
+          m << "site " << closer << " at " << dc << " is closer than the owners at " << where();
+          bad(r.closer_site_errors, m.str());
+        }
       }
     }
+  };
+  {
+    const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned n = unsigned(std::max<std::size_t>(
+        1, std::min<std::size_t>(opt.threads > 0 ? unsigned(opt.threads) : hw, nchunks)));
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+      for (std::size_t c; (c = next++) < nchunks;) sample(c);
+    };
+    std::vector<std::thread> pool;
+    for (unsigned w = 1; w < n; ++w) pool.emplace_back(work);
+    work();
+    for (auto& t : pool) t.join();
+  }
+  for (const CheckReport& r : part) {
+    rep.sampled_points += r.sampled_points;
+    rep.worst_error = std::max(rep.worst_error, r.worst_error);
+    rep.equidistance_errors += r.equidistance_errors;
+    rep.clearance_errors += r.clearance_errors;
+    rep.closer_site_errors += r.closer_site_errors;
+    for (const std::string& m : r.messages)
+      if (rep.messages.size() < 20) rep.messages.push_back(m);
   }
 
   // Completeness: a change of owner (by the ownership rule) between two close points needs a piece between them.

@@ -29,7 +29,9 @@ Result finish(Sites sites, const DiagramOptions& opt, double seconds_merge) {
   d.attempts = 1;
   if (opt.check) {
     t0 = std::chrono::steady_clock::now();
-    r.check = check_diagram(d, opt.checker);
+    CheckOptions co = opt.checker;
+    co.threads = opt.build.threads;
+    r.check = check_diagram(d, co);
     d.seconds_check = since(t0);
     if (!r.check.ok()) {
       std::string what = "the L-inf Voronoi diagram failed its check";

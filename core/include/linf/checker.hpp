@@ -21,6 +21,7 @@ struct CheckOptions {
   double pair_step = 2.0;      // DBU between the two points of a pair
   std::uint64_t seed = 1;
   double tolerance = 0;        // DBU; 0 picks 1e-6 + 1e-9 * coordinate scale
+  int threads = 0;             // threads sampling the pieces; 0: one per core
 };
 
 struct CheckReport {

@@ -223,7 +223,8 @@ def gauges_line(s, gauges, dbu, d):
 
 def cmd_voronoi(args):
     inp = Input.from_args(args)
-    s = write_voronoi(inp, diagram_stage.compute(inp.polygons, tile=inp.tile))
+    s = write_voronoi(inp, diagram_stage.compute(inp.polygons, tile=inp.tile, csv_path=inp.file("voronoi.csv"),
+                                                 dbu=inp.dbu))
     output.write_json(s, inp.file("summary.json"))
     return voronoi_line(s, inp.dir)
 
@@ -441,7 +442,8 @@ def flow(inp, args, progress=None):
     whose cancel raises). Returns (summary line, rdb, chosen selection run)."""
     step = progress or (lambda stage: None)
     step("diagram and gauges")
-    result = gauge_stage.compute(inp.polygons, with_diagram=True, tile=inp.tile)
+    result = gauge_stage.compute(inp.polygons, with_diagram=True, tile=inp.tile, csv_path=inp.file("voronoi.csv"),
+                                 dbu=inp.dbu)
     step("writing the diagram and the gauges")
     sv = write_voronoi(inp, result.pieces_diagram)
     sg = write_gauges(inp, result, result.gauges)

@@ -15,7 +15,8 @@ Piece = namedtuple("Piece", "kind x1 y1 x2 y2 d1 d2 a_x1 a_y1 a_x2 a_y2 b_x1 b_y
 
 
 class Diagram:
-    def __init__(self, raw, seconds_total):
+    def __init__(self, raw, seconds_total, csv_path=None):
+        self.csv_path = csv_path  # where the core already wrote the pieces as CSV, if it did
         self.pieces = [Piece(*p) for p in raw["pieces"]]
         self.sites = raw["sites"]
         self.clip = raw["clip"]
@@ -28,9 +29,10 @@ class Diagram:
         return {k: c.get(k, 0) for k in KINDS}
 
 
-def compute(polygons, check=True, check_pairs=2000, tile=-1):
+def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=1.0):
     """tile: side of the builder's tiles in DBU; 0 one tile, -1 automatic. The diagram is the
-    same for every tile size; tiles bound the memory the builder holds at once."""
+    same for every tile size; tiles bound the memory the builder holds at once.
+    csv_path: the core also writes voronoi.csv there (micrometres, `dbu`)."""
     t0 = time.perf_counter()
-    raw = core.voronoi_polygons(polygons, check, check_pairs, tile=tile)
-    return Diagram(raw, time.perf_counter() - t0)
+    raw = core.voronoi_polygons(polygons, check, check_pairs, tile=tile, csv=csv_path or "", dbu=dbu)
+    return Diagram(raw, time.perf_counter() - t0, csv_path)

@@ -41,18 +41,18 @@ class Gauges:
 
 
 def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, with_diagram=False,
-            with_paths=False, tile=-1):
+            with_paths=False, tile=-1, csv_path=None, dbu=1.0):
     """with_diagram: also keep the diagram's pieces (Gauges.pieces_diagram, a diagram.Diagram),
     so that a flow writes both without building the diagram twice. with_paths: each gauge's
-    `stretch` is its stretch's path [(x, y)] (else None). tile: as in diagram.compute (the
-    gauges are the same for every tile size)."""
+    `stretch` is its stretch's path [(x, y)] (else None). tile, csv_path, dbu: as in
+    diagram.compute (the gauges are the same for every tile size)."""
     t0 = time.perf_counter()
     raw = core.gauges_polygons(polygons, check, 2000, 0, tooth_fraction, space_limit_widths, with_diagram,
-                               with_paths, tile=tile)
+                               with_paths, tile=tile, csv=csv_path or "", dbu=dbu)
     out = Gauges(raw, time.perf_counter() - t0)
     if with_diagram:
         from .diagram import Diagram
-        out.pieces_diagram = Diagram(raw["diagram"], out.seconds["total"])
+        out.pieces_diagram = Diagram(raw["diagram"], out.seconds["total"], csv_path)
         raw["diagram"]["pieces"] = len(raw["diagram"]["pieces"])
     return out
 
