@@ -5,7 +5,7 @@
 # KLayout's width + space checks (metrics Square) on the same layer.
 #   python3 bench/bench_flow.py [--generated 10000,100000,1000000] [--shared] [--threads]
 #                               [--tile DBU] [--deadline SECONDS]
-# --threads adds the diagram with one thread against two (inputs up to 10^5 polygons).
+# --threads adds the diagram with one thread against two (inputs up to 20,000 polygons).
 import json
 import os
 import subprocess
@@ -80,7 +80,7 @@ for inp, layer, cell, markers in inputs:
               two["peak_rss_mb"], "%.2f s" % t_cgal if t_cgal else why, "%.1f" % (s["diagram"] / t_cgal) if t_cgal else "-",
               s["klayout_width_space"], flow / s["klayout_width_space"]))
     if "--threads" in args:
-        if two["polygons"] <= 100000:
+        if two["polygons"] <= 20000:
             single = one(inp, layer, cell, markers, 1, 0)
             row += " %.2f s / %.2f s = %.2fx |" % (single["seconds"]["diagram"], s["diagram"],
                                                    single["seconds"]["diagram"] / s["diagram"])

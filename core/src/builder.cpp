@@ -91,14 +91,7 @@ std::vector<Piece> run(const std::vector<Site>& sites, std::vector<int> ids, con
   parallel_for(tasks.size(), opt.threads,
                [&](unsigned w, std::size_t i) { workers[w].process(tasks[i].first, tasks[i].second); });
   std::vector<Piece> raw;
-  for (Builder& w : workers) {
-    for (Piece p : w.out) {
-      p.a = model.global[p.a], p.b = model.global[p.b];
-      raw.push_back(p);
-    }
-    st.boxes += w.stats.boxes, st.solves += w.stats.solves, st.solved_sites += w.stats.solved_sites;
-    st.cells += w.stats.cells;
-  }
+  collect(model, workers, raw, st);
   return raw;
 }
 

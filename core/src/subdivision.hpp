@@ -483,6 +483,18 @@ class Builder {
   const double tau_;
 };
 
+// The workers' pieces, with global site ids, appended to `raw`; their counts added to `st`.
+void collect(const Model& m, const std::vector<Builder>& workers, std::vector<Piece>& raw, BuildStats& st) {
+  for (const Builder& w : workers) {
+    for (Piece p : w.out) {
+      p.a = m.global[p.a], p.b = m.global[p.b];
+      raw.push_back(p);
+    }
+    st.boxes += w.stats.boxes, st.solves += w.stats.solves, st.solved_sites += w.stats.solved_sites;
+    st.cells += w.stats.cells;
+  }
+}
+
 
 }  // namespace
 }  // namespace linf::detail

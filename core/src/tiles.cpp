@@ -171,14 +171,7 @@ std::vector<Piece> build_tiled(const std::vector<Site>& sites, const Box& root, 
       parallel_for(per * per, opt.threads, [&](unsigned w, std::size_t k) {
         workers[w].process(tasks[task_of(k)], halo[k]);
       });
-      for (Builder& w : workers) {
-        for (Piece p : w.out) {
-          p.a = model.global[p.a], p.b = model.global[p.b];
-          raw.push_back(p);
-        }
-        st.boxes += w.stats.boxes, st.solves += w.stats.solves, st.solved_sites += w.stats.solved_sites;
-        st.cells += w.stats.cells;
-      }
+      collect(model, workers, raw, st);
       ++st.tiles;
       st.tasks += per * per;
       st.largest_tile_sites = std::max(st.largest_tile_sites, model.S.size());
