@@ -16,7 +16,7 @@
 #include "linf/builder.hpp"
 
 // Internal linkage: each including file (builder.cpp, tiles.cpp) gets its own copy, which the
-// compiler inlines as freely as a file-local class (measured: 10-15% faster solves).
+// compiler inlines as freely as a file-local class (external linkage measured 7% slower).
 namespace linf::detail {
 namespace {
 
