@@ -1,22 +1,13 @@
 #include "linf/builder.hpp"
 
 #include <algorithm>
-#include <array>
-#include <atomic>
 #include <cmath>
-#include <functional>
-#include <thread>
 #include <tuple>
-
-#include <boost/container/small_vector.hpp>
 
 #include "subdivision.hpp"
 #include "tiles.hpp"
 
 namespace linf {
-using detail::Affine;
-using detail::Cell;
-using detail::DistFn;
 
 namespace {
 using namespace detail;

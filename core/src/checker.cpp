@@ -3,13 +3,12 @@
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 #include <algorithm>
-#include <atomic>
-#include <thread>
 #include <cmath>
 #include <random>
 #include <sstream>
 
 #include "linf/distance.hpp"
+#include "parallel.hpp"
 
 namespace linf {
 namespace bg = boost::geometry;
@@ -89,6 +88,12 @@ class SiteTree {
   Tree tree_;
 };
 
+// Counts a failure in `r` and keeps the first few messages.
+void fail(CheckReport& r, std::size_t& counter, const std::string& msg) {
+  ++counter;
+  if (r.messages.size() < 20) r.messages.push_back(msg);
+}
+
 bool segments_cross(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
   auto orient = [](const Vec2& o, const Vec2& u, const Vec2& v) {
     return (u.x - o.x) * (v.y - o.y) - (u.y - o.y) * (v.x - o.x);
@@ -113,10 +118,6 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
   }
   const double tol = opt.tolerance > 0 ? opt.tolerance : 1e-6 + 1e-9 * scale;
   SiteTree sites(S);
-  auto fail = [&](std::size_t& counter, const std::string& msg) {
-    ++counter;
-    if (rep.messages.size() < 20) rep.messages.push_back(msg);
-  };
 
   // Pieces are sampled in chunks on the worker threads, each into its own report; the reports
   // are merged in chunk order, so the messages do not depend on the threads.
@@ -125,10 +126,6 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
   std::vector<CheckReport> part(nchunks);
   auto sample = [&](std::size_t c) {
     CheckReport& r = part[c];
-    auto bad = [&](std::size_t& counter, const std::string& msg) {
-      ++counter;
-      if (r.messages.size() < 20) r.messages.push_back(msg);
-    };
     for (std::size_t pi = c * chunk; pi < std::min(d.pieces.size(), (c + 1) * chunk); ++pi) {
       const Piece& pc = d.pieces[pi];
       for (int i = 0; i < k; ++i) {
@@ -143,11 +140,11 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
           w << "(" << x << "," << y << ") owners " << pc.a << "," << pc.b << " da=" << da << " db=" << db;
           return w.str();
         };
-        if (std::fabs(da - db) > tol) bad(r.equidistance_errors, "not equidistant at " + where());
+        if (std::fabs(da - db) > tol) fail(r, r.equidistance_errors, "not equidistant at " + where());
         if (i == 0 || i == k - 1) {
           const double stated = i == 0 ? pc.d1 : pc.d2;
           r.worst_error = std::max(r.worst_error, std::fabs(stated - da));
-          if (std::fabs(stated - da) > tol) bad(r.clearance_errors, "wrong clearance at " + where());
+          if (std::fabs(stated - da) > tol) fail(r, r.clearance_errors, "wrong clearance at " + where());
         }
         const double dmin = std::min(da, db);
         std::int32_t closer = -1;
@@ -157,24 +154,12 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
           r.worst_error = std::max(r.worst_error, dmin - dc);
           std::ostringstream m;
           m << "site " << closer << " at " << dc << " is closer than the owners at " << where();
-          bad(r.closer_site_errors, m.str());
+          fail(r, r.closer_site_errors, m.str());
         }
       }
     }
   };
-  {
-    const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-    const unsigned n = unsigned(std::max<std::size_t>(
-        1, std::min<std::size_t>(opt.threads > 0 ? unsigned(opt.threads) : hw, nchunks)));
-    std::atomic<std::size_t> next{0};
-    auto work = [&] {
-      for (std::size_t c; (c = next++) < nchunks;) sample(c);
-    };
-    std::vector<std::thread> pool;
-    for (unsigned w = 1; w < n; ++w) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
-  }
+  detail::parallel_for(nchunks, opt.threads, [&](unsigned, std::size_t i) { sample(i); });
   for (const CheckReport& r : part) {
     rep.sampled_points += r.sampled_points;
     rep.worst_error = std::max(rep.worst_error, r.worst_error);
@@ -246,7 +231,7 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
       m.precision(12);
       m << "no piece between (" << p.x << "," << p.y << ") nearest " << sp << " and (" << q.x << "," << q.y
         << ") nearest " << sq;
-      fail(rep.missing_edge_errors, m.str());
+      fail(rep, rep.missing_edge_errors, m.str());
     }
   }
   return rep;

@@ -20,23 +20,22 @@
 namespace linf::detail {
 namespace {
 
-
-inline Affine minus(const Affine& p, const Affine& q) { return {p.a - q.a, p.b - q.b, p.c - q.c}; }
+Affine minus(const Affine& p, const Affine& q) { return {p.a - q.a, p.b - q.b, p.c - q.c}; }
 
 // The largest value of a convex function over a box is at a corner.
-inline double max_over(const DistFn& f, const Box& b) {
+double max_over(const DistFn& f, const Box& b) {
   return std::max({f.at(b.x1, b.y1), f.at(b.x2, b.y1), f.at(b.x2, b.y2), f.at(b.x1, b.y2)});
 }
 
 // The four quarters of a box, the subdivision step.
-inline std::array<Box, 4> quarters(const Box& b) {
+std::array<Box, 4> quarters(const Box& b) {
   const double mx = 0.5 * (b.x1 + b.x2), my = 0.5 * (b.y1 + b.y2);
   return {Box{b.x1, b.y1, mx, my}, Box{mx, b.y1, b.x2, my}, Box{b.x1, my, mx, b.y2}, Box{mx, my, b.x2, b.y2}};
 }
 
 // Liang-Barsky: the parameter interval [t0, t1] of the segment p + t (q - p), t in [0, 1],
 // inside the closed box; false if the segment misses it.
-inline bool clip_to_box(double px, double py, double qx, double qy, const Box& b, double& t0, double& t1) {
+bool clip_to_box(double px, double py, double qx, double qy, const Box& b, double& t0, double& t1) {
   t0 = 0, t1 = 1;
   const double dx = qx - px, dy = qy - py;
   auto edge = [&](double p, double q) {
@@ -52,7 +51,7 @@ inline bool clip_to_box(double px, double py, double qx, double qy, const Box& b
 // L-inf distance between a closed box and a site: zero if they meet, else attained at a vertex
 // of one of them (both are convex polygons and the unit ball is a polygon).
 // The same holds for L1, whose breakpoints along a segment are only the axis crossings.
-inline double box_distance(const Box& b, const Site& s, bool l1 = false) {
+double box_distance(const Box& b, const Site& s, bool l1 = false) {
   auto point_to_box = [&](double x, double y) {
     const double ex = std::max({b.x1 - x, x - b.x2, 0.0}), ey = std::max({b.y1 - y, y - b.y2, 0.0});
     return l1 ? ex + ey : std::max(ex, ey);

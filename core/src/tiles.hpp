@@ -9,11 +9,9 @@
 // time, its tasks run on the worker threads. Since no task depends on how the tasks are
 // grouped, the pieces are bit-identical for every tile size (tested).
 #pragma once
-#include <atomic>
-#include <functional>
-#include <thread>
 #include <vector>
 
+#include "parallel.hpp"
 #include "subdivision.hpp"
 
 namespace linf::detail {
@@ -21,24 +19,5 @@ namespace linf::detail {
 // Pieces (global site ids, not yet joined) of the diagram inside `root`.
 std::vector<Piece> build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau,
                                BuildStats& st);
-
-// Worker threads for n jobs: `threads`, or one per core if 0, at most n.
-inline unsigned worker_count(std::size_t n, int threads) {
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  return unsigned(std::max<std::size_t>(1, std::min<std::size_t>(threads > 0 ? unsigned(threads) : hw, n)));
-}
-
-// Calls job(worker, i) for i in [0, n) on `threads` threads (0: one per core); worker < threads.
-inline void parallel_for(std::size_t n, int threads, const std::function<void(unsigned, std::size_t)>& job) {
-  const unsigned k = worker_count(n, threads);
-  std::atomic<std::size_t> next{0};
-  auto work = [&](unsigned w) {
-    for (std::size_t i; (i = next++) < n;) job(w, i);
-  };
-  std::vector<std::thread> pool;
-  for (unsigned w = 1; w < k; ++w) pool.emplace_back(work, w);
-  work(0);
-  for (auto& t : pool) t.join();
-}
 
 }  // namespace linf::detail
