@@ -84,9 +84,12 @@ double box_distance(const Box& b, const Site& s, bool l1 = false) {
 
 struct LocalCell {
   Cell cell;
-  // Active piece of f / g per local site, -1 unknown; inline for the usual few sites.
+  // Active piece of f / g per local site, -1 unknown, kAbsent where the site is above another
+  // everywhere on the cell; inline for the usual few sites.
   boost::container::small_vector<signed char, 16> af, ag;
+  int ref = -1;  // a present site with an affine f here, the reference for the dominance test
 };
+constexpr signed char kAbsent = -2;
 
 // The sites of one tile and their distance functions, shared read-only by the workers.
 // Local ids run in the order of the global ids (`global`), so every decision that compares
@@ -122,10 +125,19 @@ class Builder {
   std::vector<int> candidates(const Box& b, const std::vector<int>& cand) const {
     double U = INFINITY;
     for (int t : cand) U = std::min(U, max_over(f_[t], b));
+    // The reference for the dominance test: least upper bound, then least in L1 among those.
+    // (Within U + tau, as the tiles' halos: a tile picks the same reference as the whole layer.)
+    int best = -1;
+    double Ug = INFINITY;
+    for (int t : cand) {
+      if (max_over(f_[t], b) > U + tau_) continue;
+      const double m = max_over(g_[t], b);
+      if (m < Ug) Ug = m, best = t;
+    }
     std::vector<int> keep;
     keep.reserve(cand.size());
     for (int t : cand)
-      if (box_distance(b, S_[t]) <= U + tau_) keep.push_back(t);
+      if (box_distance(b, S_[t]) <= U + tau_ && !dominated(b, t, best)) keep.push_back(t);
     if (keep.size() > 2) prune_ties(b, keep);
     return keep;
   }
@@ -150,6 +162,39 @@ class Builder {
   std::vector<Piece> out;
 
  private:
+  // Does u come before t at every point of the box and just beyond its sides, by the
+  // ownership rule (least L-inf, then least L1)? Then t owns nothing there, ties nowhere, and
+  // is never the owner across a side, so it is no candidate. The lower-bound test cannot see
+  // this where sites are nearly parallel (the left ends of many tracks seen from far left, a
+  // row of equal shapes seen from afar: their distances differ by a constant smaller than the
+  // box), so without it the boxes would be cut down to that constant.
+  // Sufficient test on the box grown by a small margin: some piece p of f_t above f_u (p <= f_t,
+  // and p - f_u is concave, so its least value is at a corner); or some piece not below f_u
+  // and some piece of g_t above g_u. Allowances: tol() at each corner.
+  bool dominated(const Box& b, int t, int u) const {
+    if (t == u) return false;
+    const double m = 1e-3 * std::max(b.x2 - b.x1, b.y2 - b.y1) + tau_;
+    const Vec2 c[4] = {{b.x1 - m, b.y1 - m}, {b.x2 + m, b.y1 - m}, {b.x2 + m, b.y2 + m}, {b.x1 - m, b.y2 + m}};
+    double fu[4], e[4];
+    for (int k = 0; k < 4; ++k) fu[k] = f_[u].at(c[k].x, c[k].y), e[k] = tol(c[k]);
+    // min over corners of (piece - reference) / allowance, per piece: > 1 above, >= -1 not below.
+    auto margin = [&](const DistFn& fn, const double* ref) {
+      double best = -INFINITY;
+      for (int i = 0; i < fn.n; ++i) {
+        double lo = INFINITY;
+        for (int k = 0; k < 4; ++k) lo = std::min(lo, (fn.piece[i].at(c[k].x, c[k].y) - ref[k]) / e[k]);
+        best = std::max(best, lo);
+      }
+      return best;
+    };
+    const double mf = margin(f_[t], fu);
+    if (mf > 1) return true;
+    if (mf < -1) return false;
+    double gu[4];
+    for (int k = 0; k < 4; ++k) gu[k] = g_[u].at(c[k].x, c[k].y);
+    return margin(g_[t], gu) > 1;
+  }
+
   // Far from the sites, whole groups share one affine L-inf function over the box (a
   // two-dimensional bisector region) and the count never drops by subdividing. Inside such a
   // group only the L1 tie-break decides, so members that lose on it everywhere in the box
@@ -173,11 +218,16 @@ class Builder {
       while (g1 < flat.size() && flat[g1].a == flat[g0].a && flat[g1].b == flat[g0].b && flat[g1].c == flat[g0].c) ++g1;
       if (g1 - g0 == 1) { rest.push_back(flat[g0].t); g0 = g1; continue; }
       double U = INFINITY;
-      for (std::size_t i = g0; i < g1; ++i) U = std::min(U, max_over(g_[flat[i].t], b));
+      int best = -1;
+      for (std::size_t i = g0; i < g1; ++i) {
+        const double m = max_over(g_[flat[i].t], b);
+        if (m < U) U = m, best = flat[i].t;
+      }
       // Members with identical L1 pieces are all kept: they may part just outside the box,
       // and the owner beyond a box side must be among the candidates.
       for (std::size_t i = g0; i < g1; ++i)
-        if (box_distance(b, S_[flat[i].t], true) <= U + tau_) rest.push_back(flat[i].t);
+        if (box_distance(b, S_[flat[i].t], true) <= U + tau_ && !dominated(b, flat[i].t, best))
+          rest.push_back(flat[i].t);
       g0 = g1;
     }
     std::sort(rest.begin(), rest.end());
@@ -198,12 +248,50 @@ class Builder {
     return n;
   }
 
-  // Splits `cells` so that site `fn` is affine on each; `act` selects af or ag.
-  static void split_by(std::vector<LocalCell>& cells, const DistFn& fn, std::size_t k, bool use_g) {
+  // Largest value of an affine piece over a cell: at a vertex.
+  static double max_at_vertices(const Affine& a, const Cell& c) {
+    double m = -INFINITY;
+    for (const Vec2& v : c.v) m = std::max(m, a.at(v.x, v.y));
+    return m;
+  }
+
+  // Is some piece of f_t above the reference's affine piece everywhere on the closed cell?
+  // Then t owns nothing there, ties nowhere, and need not cut the cell (see dominated()).
+  bool absent_in(const LocalCell& lc, const std::vector<int>& C, std::size_t t) const {
+    if (lc.ref < 0) return false;
+    const Affine& q = f_[C[lc.ref]].piece[lc.af[lc.ref]];
+    const DistFn& ft = f_[C[t]];
+    for (int i = 0; i < ft.n; ++i) {
+      bool above = true;
+      for (const Vec2& v : lc.cell.v)
+        if (!(ft.piece[i].at(v.x, v.y) > q.at(v.x, v.y) + tol(v))) { above = false; break; }
+      if (above) return true;
+    }
+    return false;
+  }
+
+  // The reference of a cell after site k became affine on it: whichever of the two has the
+  // lower maximum over the cell.
+  void update_ref(LocalCell& lc, const std::vector<int>& C, std::size_t k) const {
+    if (lc.ref < 0) { lc.ref = int(k); return; }
+    const double mk = max_at_vertices(f_[C[k]].piece[lc.af[k]], lc.cell);
+    const double mr = max_at_vertices(f_[C[lc.ref]].piece[lc.af[lc.ref]], lc.cell);
+    if (mk < mr) lc.ref = int(k);
+  }
+
+  // Splits `cells` so that site k (of C) is affine on each: by f, where it is present (dropping
+  // it from cells where it is absent), or by g.
+  void split_by(std::vector<LocalCell>& cells, const std::vector<int>& C, std::size_t k, bool use_g) const {
+    const DistFn& fn = use_g ? g_[C[k]] : f_[C[k]];
     std::vector<LocalCell> next;
     next.reserve(cells.size());
     for (LocalCell& lc : cells) {
       auto& act = use_g ? lc.ag : lc.af;
+      if (!use_g && absent_in(lc, C, k)) {
+        act[k] = kAbsent;
+        next.push_back(std::move(lc));
+        continue;
+      }
       int j = fn.argmax(lc.cell.v[0].x, lc.cell.v[0].y);
       bool affine = true;
       for (const Vec2& p : lc.cell.v) {
@@ -212,6 +300,7 @@ class Builder {
       }
       if (affine) {
         act[k] = static_cast<signed char>(j);
+        if (!use_g) update_ref(lc, C, k);
         next.push_back(std::move(lc));
         continue;
       }
@@ -220,8 +309,9 @@ class Builder {
         for (int i = 0; i < fn.n && !c.empty(); ++i)
           if (i != jj) c = detail::clip(c, minus(fn.piece[jj], fn.piece[i]));
         if (c.empty()) continue;
-        LocalCell sub{std::move(c), lc.af, lc.ag};
+        LocalCell sub{std::move(c), lc.af, lc.ag, lc.ref};
         (use_g ? sub.ag : sub.af)[k] = static_cast<signed char>(jj);
+        if (!use_g) update_ref(sub, C, k);
         next.push_back(std::move(sub));
       }
     }
@@ -236,7 +326,13 @@ class Builder {
     cells[0].cell = detail::box_cell(b);
     cells[0].af.assign(k, -1);
     cells[0].ag.assign(k, -1);
-    for (std::size_t i = 0; i < k; ++i) split_by(cells, f_[C[i]], i, false);
+    // Nearest at the centre first: they become the cells' references early, and the far
+    // sites then mostly drop out instead of cutting the cells.
+    const double cx = 0.5 * (b.x1 + b.x2), cy = 0.5 * (b.y1 + b.y2);
+    std::vector<std::pair<double, std::size_t>> order(k);
+    for (std::size_t i = 0; i < k; ++i) order[i] = {f_[C[i]].at(cx, cy), i};
+    std::sort(order.begin(), order.end());
+    for (const auto& oi : order) split_by(cells, C, oi.second, false);
     stats.cells += cells.size();
 
     for (LocalCell& lc : cells) {
@@ -245,9 +341,11 @@ class Builder {
       std::vector<char> tied(k, 0);
       for (std::size_t i = 0; i < k; ++i)
         for (std::size_t j = i + 1; j < k; ++j)
-          if (detail::same_affine(f_[C[i]].piece[lc.af[i]], f_[C[j]].piece[lc.af[j]])) tied[i] = tied[j] = 1;
+          if (lc.af[i] >= 0 && lc.af[j] >= 0 &&
+              detail::same_affine(f_[C[i]].piece[lc.af[i]], f_[C[j]].piece[lc.af[j]]))
+            tied[i] = tied[j] = 1;
       for (std::size_t i = 0; i < k; ++i)
-        if (tied[i]) split_by(sub, g_[C[i]], i, true);
+        if (tied[i]) split_by(sub, C, i, true);
       for (const LocalCell& c : sub) regions(c, C);
     }
   }
@@ -278,10 +376,28 @@ class Builder {
     Vec2 c{0, 0};
     for (const Vec2& v : lc.cell.v) c.x += v.x, c.y += v.y;
     c.x /= double(lc.cell.v.size()), c.y /= double(lc.cell.v.size());
-    std::vector<std::pair<double, std::size_t>> order(k);
-    for (std::size_t j = 0; j < k; ++j) order[j] = {f_[C[j]].piece[lc.af[j]].at(c.x, c.y), j};
+    // Every function is affine here, so its range over the cell is spanned by the vertices; a
+    // site whose least value is above the least greatest value owns nothing, ties nowhere and
+    // clips nothing that the site attaining it does not.
+    boost::container::small_vector<double, 16> lo(k, INFINITY);
+    double U = INFINITY, e = 0;
+    for (const Vec2& v : lc.cell.v) e = std::max(e, tol(v));
+    for (std::size_t j = 0; j < k; ++j) {
+      if (lc.af[j] < 0) continue;
+      const Affine& a = f_[C[j]].piece[lc.af[j]];
+      double hi = -INFINITY;
+      for (const Vec2& v : lc.cell.v) {
+        const double x = a.at(v.x, v.y);
+        lo[j] = std::min(lo[j], x), hi = std::max(hi, x);
+      }
+      U = std::min(U, hi);
+    }
+    boost::container::small_vector<std::pair<double, std::size_t>, 16> order;
+    for (std::size_t j = 0; j < k; ++j)
+      if (lc.af[j] >= 0 && lo[j] <= U + e) order.push_back({f_[C[j]].piece[lc.af[j]].at(c.x, c.y), j});
     std::sort(order.begin(), order.end());
-    for (std::size_t i = 0; i < k; ++i) {
+    for (const auto& oi : order) {
+      const std::size_t i = oi.second;
       Cell r = lc.cell;
       for (const auto& oj : order) {
         const std::size_t j = oj.second;
@@ -309,8 +425,8 @@ class Builder {
   // A distance function restricted to an edge: a convex piecewise-linear function of s on
   // [0, 1], kept as its breakpoints and the line active after each.
   struct Profile {
-    std::vector<double> at;  // at[0] = 0 < at[1] < ... < 1
-    std::vector<Line> line;
+    boost::container::small_vector<double, 6> at;  // at[0] = 0 < at[1] < ... < 1
+    boost::container::small_vector<Line, 6> line;
   };
   static Profile profile(const DistFn& f, const Vec2& p, const Vec2& q) {
     Line L[6];
@@ -336,25 +452,64 @@ class Builder {
     }
     return pr;
   }
-  // Interior parameters where the owner order of two profiles can change: the breakpoints
-  // of both and the places where they cross.
-  static void crossings(const Profile& A, const Profile& B, std::vector<double>& out) {
-    std::vector<double> bs(A.at.begin() + 1, A.at.end());
-    bs.insert(bs.end(), B.at.begin() + 1, B.at.end());
-    out.insert(out.end(), bs.begin(), bs.end());
-    bs.push_back(0), bs.push_back(1);
-    std::sort(bs.begin(), bs.end());
-    std::size_t ia = 0, ib = 0;
-    for (std::size_t k = 0; k + 1 < bs.size(); ++k) {
-      const double lo = bs[k], hi = bs[k + 1];
-      if (hi - lo <= 1e-12) continue;
-      const double mid = 0.5 * (lo + hi);
-      while (ia + 1 < A.at.size() && A.at[ia + 1] <= mid) ++ia;
-      while (ib + 1 < B.at.size() && B.at[ib + 1] <= mid) ++ib;
+  static std::size_t line_after(const Profile& P, double s) {
+    std::size_t i = 0;
+    while (i + 1 < P.at.size() && P.at[i + 1] <= s) ++i;
+    return i;
+  }
+  static double value(const Profile& P, double s) {
+    const Line& l = P.line[line_after(P, s)];
+    return l.v + l.d * s;
+  }
+  static double eps(double v) { return 1e-11 * (1 + std::fabs(v)); }
+
+  // The first parameter in (s, 1) where B drops below A, or 1.
+  static double first_below(const Profile& A, const Profile& B, double s) {
+    std::size_t ia = line_after(A, s), ib = line_after(B, s);
+    double lo = s;
+    for (;;) {
+      const double na = ia + 1 < A.at.size() ? A.at[ia + 1] : 1, nb = ib + 1 < B.at.size() ? B.at[ib + 1] : 1;
+      const double hi = std::min(na, nb);
       const Line &a = A.line[ia], &b = B.line[ib];
-      if (a.d == b.d) continue;
-      const double x = (b.v - a.v) / (a.d - b.d);
-      if (x > lo && x < hi) out.push_back(x);
+      const double dlo = (b.v + b.d * lo) - (a.v + a.d * lo), dhi = (b.v + b.d * hi) - (a.v + a.d * hi);
+      if (dhi < -eps(a.v + a.d * hi)) {
+        const double x = dlo <= 0 ? lo : lo + dlo / (dlo - dhi) * (hi - lo);
+        return std::max(x, std::nextafter(s, 2.0));
+      }
+      if (hi >= 1) return 1;
+      lo = hi;
+      if (na <= hi) ++ia;
+      if (nb <= hi) ++ib;
+    }
+  }
+
+  // Interior parameters where the owner beyond the edge can change: where the lower envelope
+  // of the profiles (least L1) changes hands, and every profile's breakpoints (the slopes
+  // across may change there). Walking the envelope costs its size times the profiles, where
+  // all pairwise crossings cost the square of the profiles: far from a row of equal shapes
+  // dozens of sites tie along one edge.
+  template <class Profiles>
+  static void envelope_cuts(const Profiles& P, std::vector<double>& out) {
+    for (const Profile& pr : P) out.insert(out.end(), pr.at.begin() + 1, pr.at.end());
+    auto lowest_after = [&](double s) {
+      std::size_t best = 0;
+      double bv = value(P[0], s), bd = P[0].line[line_after(P[0], s)].d;
+      for (std::size_t i = 1; i < P.size(); ++i) {
+        const double v = value(P[i], s), d = P[i].line[line_after(P[i], s)].d;
+        if (v < bv - eps(bv) || (v <= bv + eps(bv) && d < bd)) best = i, bv = v, bd = d;
+      }
+      return best;
+    };
+    double s = 0;
+    std::size_t cur = lowest_after(s);
+    for (int guard = 0; guard < 4 * int(P.size()) + 16; ++guard) {
+      double next = 1;
+      for (std::size_t i = 0; i < P.size(); ++i)
+        if (i != cur) next = std::min(next, first_below(P[cur], P[i], s));
+      if (next >= 1 - 1e-12) return;
+      out.push_back(next);
+      s = next;
+      cur = lowest_after(s);
     }
   }
 
@@ -380,33 +535,42 @@ class Builder {
       const double ftp = ft.at(p.x, p.y), ftq = ft.at(q.x, q.y);
       boost::container::small_vector<int, 8> tied{t};
       for (std::size_t j = 0; j < C.size(); ++j) {
-        if (j == ti) continue;
+        if (j == ti || lc.af[j] < 0) continue;
         const Affine& fu = f_[C[j]].piece[lc.af[j]];
         if (std::fabs(fu.at(p.x, p.y) - ftp) <= tol(p) && std::fabs(fu.at(q.x, q.y) - ftq) <= tol(q))
           tied.push_back(C[j]);
       }
       if (tied.size() == 1) continue;  // a split inside t's own region
+      // The owner beyond is one of the tied; emit_piece keeps only t < owner (the other side
+      // reports the rest), so where all come before t there is nothing to emit.
+      if (*std::max_element(tied.begin() + 1, tied.end()) < t) continue;
       // Only sites that also share the least slope across the edge go to the L1 tie-break.
       const double len = std::hypot(nrm.x, nrm.y);
       const Vec2 un{nrm.x / len, nrm.y / len};
-      std::vector<double> sl(tied.size());
+      boost::container::small_vector<double, 8> sl(tied.size());
       double smin = INFINITY;
       for (std::size_t i = 0; i < tied.size(); ++i)
         smin = std::min(smin, sl[i] = slope(f_[tied[i]], m, un, f_[tied[i]].at(m.x, m.y), tol(m)));
-      std::vector<Profile> g;
+      boost::container::small_vector<Profile, 4> g;
       for (std::size_t i = 0; i < tied.size(); ++i)
         if (sl[i] <= smin + 1e-12) g.push_back(profile(g_[tied[i]], p, q));
       std::vector<double> cuts{0.0, 1.0};
-      if (g.size() > 1)
-        for (std::size_t i = 0; i < g.size(); ++i)
-          for (std::size_t j = i + 1; j < g.size(); ++j) crossings(g[i], g[j], cuts);
+      if (g.size() > 1) envelope_cuts(g, cuts);
       std::sort(cuts.begin(), cuts.end());
+      // Neighbouring parts with the same owner beyond go out as one piece.
+      auto at = [&](double s) { return Vec2{p.x + s * (q.x - p.x), p.y + s * (q.y - p.y)}; };
+      double from = 0;
+      int owner = -1;
       for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
         if (cuts[i + 1] - cuts[i] <= 1e-9) continue;
-        const Vec2 a{p.x + cuts[i] * (q.x - p.x), p.y + cuts[i] * (q.y - p.y)};
-        const Vec2 b{p.x + cuts[i + 1] * (q.x - p.x), p.y + cuts[i + 1] * (q.y - p.y)};
-        emit_piece(a, b, t, owner_beyond({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, nrm, C));
+        const Vec2 a = at(cuts[i]), b = at(cuts[i + 1]);
+        const int u = owner_beyond({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, nrm, C);
+        if (u != owner) {
+          if (owner >= 0) emit_piece(at(from), a, t, owner);
+          from = cuts[i], owner = u;
+        }
       }
+      if (owner >= 0) emit_piece(at(from), q, t, owner);
     }
   }
 

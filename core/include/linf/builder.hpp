@@ -23,7 +23,7 @@
 namespace linf {
 
 struct BuildOptions {
-  int local_sites = 12;       // solve a box directly once at most this many sites remain,
+  int local_sites = 16;       // solve a box directly once at most this many sites remain,
   int affine_sites = 48;     // or at most this many of which
   int bent_sites = 6;         // at most this many are not affine over the box
   double min_box = 1.0 / 64;  // never cut a box below this side (DBU)
