@@ -172,7 +172,8 @@ TEST(Builder, FarFieldPassGivesTheOnePassDiagram) {
 // Where many sites are nearly parallel seen from far away, their distances differ by a constant
 // smaller than a box, and only the dominance test (subdivision.hpp, dominated()) keeps the
 // builder from cutting the empty field down to that constant. The work is counted, not timed:
-// solved sites (the sum of the local solves' sizes) before the test were 167,100 and 2,932,553.
+// solved sites (the sum of the local solves' sizes) were 293,053 and 2,932,553 before it, 12,313
+// and 159,460 with it.
 namespace {
 std::size_t solved_sites_of(const std::vector<Polygon>& polys) {
   const DiagramOptions opt;  // with the checker: throws if the diagram is wrong
