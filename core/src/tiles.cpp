@@ -127,7 +127,7 @@ int task_level(std::size_t n) {
   return level;
 }
 
-constexpr std::size_t kAutoTileSites = std::size_t(1) << 18;
+constexpr std::size_t kAutoTileSites = std::size_t(1) << 16;
 
 }  // namespace
 
