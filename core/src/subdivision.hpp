@@ -123,16 +123,17 @@ class Builder {
 
   // The sites that can own a point of b, from a superset `cand`.
   std::vector<int> candidates(const Box& b, const std::vector<int>& cand) const {
+    std::vector<double> upper(cand.size());
     double U = INFINITY;
-    for (int t : cand) U = std::min(U, max_over(f_[t], b));
+    for (std::size_t i = 0; i < cand.size(); ++i) U = std::min(U, upper[i] = max_over(f_[cand[i]], b));
     // The reference for the dominance test: least upper bound, then least in L1 among those.
     // (Within U + tau, as the tiles' halos: a tile picks the same reference as the whole layer.)
     int best = -1;
     double Ug = INFINITY;
-    for (int t : cand) {
-      if (max_over(f_[t], b) > U + tau_) continue;
-      const double m = max_over(g_[t], b);
-      if (m < Ug) Ug = m, best = t;
+    for (std::size_t i = 0; i < cand.size(); ++i) {
+      if (upper[i] > U + tau_) continue;
+      const double m = max_over(g_[cand[i]], b);
+      if (m < Ug) Ug = m, best = cand[i];
     }
     std::vector<int> keep;
     keep.reserve(cand.size());
@@ -177,22 +178,27 @@ class Builder {
     const Vec2 c[4] = {{b.x1 - m, b.y1 - m}, {b.x2 + m, b.y1 - m}, {b.x2 + m, b.y2 + m}, {b.x1 - m, b.y2 + m}};
     double fu[4], e[4];
     for (int k = 0; k < 4; ++k) fu[k] = f_[u].at(c[k].x, c[k].y), e[k] = tol(c[k]);
-    // min over corners of (piece - reference) / allowance, per piece: > 1 above, >= -1 not below.
-    auto margin = [&](const DistFn& fn, const double* ref) {
-      double best = -INFINITY;
-      for (int i = 0; i < fn.n; ++i) {
-        double lo = INFINITY;
-        for (int k = 0; k < 4; ++k) lo = std::min(lo, (fn.piece[i].at(c[k].x, c[k].y) - ref[k]) / e[k]);
-        best = std::max(best, lo);
-      }
-      return best;
-    };
-    const double mf = margin(f_[t], fu);
+    const double mf = piece_margin(f_[t], c, 4, fu, e);
     if (mf > 1) return true;
     if (mf < -1) return false;
     double gu[4];
     for (int k = 0; k < 4; ++k) gu[k] = g_[u].at(c[k].x, c[k].y);
-    return margin(g_[t], gu) > 1;
+    return piece_margin(g_[t], c, 4, gu, e) > 1;
+  }
+
+  // How far the highest piece of fn stays above `ref` at the points, in allowances: the
+  // largest over pieces of the least (piece - ref) / allowance. > 1: some piece is above ref
+  // at every point; < -1: every piece is below it somewhere.
+  static double piece_margin(const DistFn& fn, const Vec2* pts, std::size_t n, const double* ref,
+                             const double* allowance) {
+    double best = -INFINITY;
+    for (int i = 0; i < fn.n; ++i) {
+      double lo = INFINITY;
+      for (std::size_t k = 0; k < n && lo > best; ++k)
+        lo = std::min(lo, (fn.piece[i].at(pts[k].x, pts[k].y) - ref[k]) / allowance[k]);
+      best = std::max(best, lo);
+    }
+    return best;
   }
 
   // Far from the sites, whole groups share one affine L-inf function over the box (a
@@ -260,14 +266,10 @@ class Builder {
   bool absent_in(const LocalCell& lc, const std::vector<int>& C, std::size_t t) const {
     if (lc.ref < 0) return false;
     const Affine& q = f_[C[lc.ref]].piece[lc.af[lc.ref]];
-    const DistFn& ft = f_[C[t]];
-    for (int i = 0; i < ft.n; ++i) {
-      bool above = true;
-      for (const Vec2& v : lc.cell.v)
-        if (!(ft.piece[i].at(v.x, v.y) > q.at(v.x, v.y) + tol(v))) { above = false; break; }
-      if (above) return true;
-    }
-    return false;
+    const auto& v = lc.cell.v;
+    boost::container::small_vector<double, 10> ref(v.size()), e(v.size());
+    for (std::size_t k = 0; k < v.size(); ++k) ref[k] = q.at(v[k].x, v[k].y), e[k] = tol(v[k]);
+    return piece_margin(f_[C[t]], v.data(), v.size(), ref.data(), e.data()) > 1;
   }
 
   // The reference of a cell after site k became affine on it: whichever of the two has the
