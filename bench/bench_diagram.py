@@ -42,7 +42,7 @@ cgal_notes = []
 with tempfile.TemporaryDirectory() as tmp:
     data = os.path.join(tmp, "polygons.json")
     with open(data, "w") as f:
-        json.dump(polygons, f)
+        json.dump(list(polygons), f)
     for seed in (0, 1, 2):
         try:
             run = subprocess.run(["/usr/bin/python3", os.path.join(repo, "bench", "cgal_baseline.py"), data, str(seed)],

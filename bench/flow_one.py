@@ -19,6 +19,7 @@ import pya  # noqa: E402
 
 from linf_opc import core, layout, markers as marker_io, selection, split  # noqa: E402
 from linf_opc import gauges as gauge_stage  # noqa: E402
+from linf_opc.polygons import core_input  # noqa: E402
 
 g = globals()
 t = {}
@@ -61,9 +62,9 @@ threads = int(g.get("threads") or 0)
 tile = float(g.get("tile") or -1)
 if g.get("polygons_json"):
     with open(g["polygons_json"], "w") as f:
-        json.dump(polygons, f)
+        json.dump(list(polygons), f)
 t0 = time.perf_counter()
-raw = core.gauges_polygons(polygons, True, 2000, threads, tile=tile)
+raw = core.gauges_polygons(core_input(polygons), True, 2000, threads, tile=tile)
 t["diagram_and_gauges"] = time.perf_counter() - t0
 t["diagram"] = raw["diagram"]["seconds"]["merge"] + raw["diagram"]["seconds"]["build"] + raw["diagram"]["seconds"]["check"]
 t["gauges"] = raw["diagram"]["seconds"]["gauges"]

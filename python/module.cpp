@@ -2,6 +2,7 @@
 #include <pybind11/pybind11.h>
 
 #include <array>
+#include <climits>
 #include <chrono>
 #include <string>
 #include <tuple>
@@ -30,7 +31,38 @@ Ring ring_of(const std::vector<XY>& pts) {
 
 using PyPolygons = std::vector<std::pair<std::vector<XY>, std::vector<std::vector<XY>>>>;
 
-std::vector<Polygon> polygons_of(const PyPolygons& polys) {
+// A contiguous buffer of signed 64-bit integers (array('q')).
+const std::int64_t* int64s_of(const py::buffer_info& info, const char* name) {
+  if (info.ndim != 1 || info.itemsize != 8 || (info.format != "q" && info.format != "l"))
+    throw py::value_error(std::string(name) + " must be a flat array of 64-bit integers, array('q')");
+  return static_cast<const std::int64_t*>(info.ptr);
+}
+
+// Polygons as [(outer, [holes])] lists, or flat (points, rings): points = array('q') of
+// x0, y0, x1, y1, ...; rings = array('q') of point counts, each outer ring followed by its
+// holes with negative counts. The flat form costs 16 bytes a point instead of ~150.
+std::vector<Polygon> polygons_of(const py::object& obj) {
+  if (py::isinstance<py::tuple>(obj) && py::len(obj) == 2 && PyObject_CheckBuffer(obj[py::int_(0)].ptr())) {
+    const py::buffer_info pi = py::buffer(obj[py::int_(0)]).request(), ri = py::buffer(obj[py::int_(1)]).request();
+    const std::int64_t* pts = int64s_of(pi, "points");
+    const std::int64_t* rings = int64s_of(ri, "rings");
+    const std::size_t np = std::size_t(pi.shape[0]) / 2, nr = std::size_t(ri.shape[0]);
+    std::vector<Polygon> in;
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < nr; ++k) {
+      const std::int64_t c = rings[k];
+      const std::size_t n = std::size_t(c < 0 ? -c : c);
+      if (at + n > np) throw py::value_error("rings count more points than there are");
+      if (c < 0 && in.empty()) throw py::value_error("a hole (negative count) must follow its outer ring");
+      Ring r(n);
+      for (std::size_t i = 0; i < n; ++i, ++at) r[i] = {pts[2 * at], pts[2 * at + 1]};
+      if (c < 0) in.back().holes.push_back(std::move(r));
+      else in.push_back({std::move(r), {}});
+    }
+    if (at != np) throw py::value_error("points left over after the last ring");
+    return in;
+  }
+  const auto polys = obj.cast<PyPolygons>();
   std::vector<Polygon> in;
   in.reserve(polys.size());
   for (auto& p : polys) {
@@ -85,38 +117,55 @@ py::dict to_python(const Result& r) {
 
 py::tuple site_tuple(const Site& s) { return py::make_tuple(s.a.x, s.a.y, s.b.x, s.b.y); }
 
-py::dict gauges_to_python(const Result& r, const Gauges& g, double seconds_gauges, bool with_pieces,
-                          bool with_paths) {
-  const auto& S = r.diagram.sites.sites;
-  py::list out;
-  for (const Gauge& x : g.gauges) {
-    py::object path = py::none();  // only on request: a list per gauge is costly on a large layer
-    if (with_paths) {
-      py::list pts;
-      for (const Vec2& v : g.stretches[x.stretch].path) pts.append(py::make_tuple(v.x, v.y));
-      path = pts;
-    }
-    out.append(py::make_tuple(gauge_type_name(x.type), x.p.x, x.p.y, x.q.x, x.q.y, x.at.x, x.at.y, x.cd, x.score,
-                              x.norm_score, x.tiebreak, x.rank, x.teeth, site_tuple(S[x.a]), site_tuple(S[x.b]),
-                              x.a, x.b, path));
-  }
+py::dict piece_counts(const Diagram& d) {
   py::dict counts;
   for (const char* k : {"internal", "external", "notch", "adjacent"}) counts[k] = 0;
-  for (const Piece& p : r.diagram.pieces) {
+  for (const Piece& p : d.pieces) {
     const char* k = kind_name(p.kind);
     counts[k] = counts[k].cast<long>() + 1;
   }
-  py::dict d = with_pieces ? to_python(r) : to_python_summary(r);
-  d["counts"] = counts;
-  if (!with_pieces) d["pieces"] = r.diagram.pieces.size();
-  d["seconds"].cast<py::dict>()["gauges"] = seconds_gauges;
-  py::dict res;
-  res["gauges"] = out;
-  res["stretches"] = g.stretches.size();
-  res["typical_width"] = g.typical_width;
-  res["space_limit"] = g.space_limit;
-  res["diagram"] = d;
-  return res;
+  return counts;
+}
+
+template <class T>
+py::bytes bytes_of(const std::vector<T>& v) {
+  return py::bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+}
+
+// Gauges as columns in rank order, row-major blocks of plain numbers (a Python tuple a gauge
+// would be most of the flow's memory on a large layer; plugin/python/linf_opc/gauges.py wraps
+// them): "reals" float64 x10 (x1, y1, x2, y2, cx, cy, cd, score, norm_score, tiebreak), "ints"
+// int32 x13 (rank, teeth, site_a, site_b, a_x1, a_y1, a_x2, a_y2, b_x1, b_y1, b_x2, b_y2, type
+// index in internal, external, sandwich, comb, T).
+py::dict gauge_columns(const Sites& sites, const Gauges& g, bool with_paths) {
+  const auto& S = sites.sites;
+  std::vector<double> reals;
+  std::vector<std::int32_t> ints;
+  reals.reserve(10 * g.gauges.size());
+  ints.reserve(13 * g.gauges.size());
+  py::list paths;
+  for (const Gauge& x : g.gauges) {
+    for (double v : {x.p.x, x.p.y, x.q.x, x.q.y, x.at.x, x.at.y, x.cd, x.score, x.norm_score, x.tiebreak})
+      reals.push_back(v);
+    const Site& a = S[x.a];
+    const Site& b = S[x.b];
+    for (Coord v : {Coord(x.rank), Coord(x.teeth), Coord(x.a), Coord(x.b), a.a.x, a.a.y, a.b.x, a.b.y, b.a.x, b.a.y,
+                    b.b.x, b.b.y, Coord(x.type)}) {
+      if (v < INT32_MIN || v > INT32_MAX) throw py::value_error("coordinates beyond 32 bits (layouts have 32)");
+      ints.push_back(std::int32_t(v));
+    }
+    if (with_paths) {
+      py::list pts;
+      for (const Vec2& v : g.stretches[x.stretch].path) pts.append(py::make_tuple(v.x, v.y));
+      paths.append(pts);
+    }
+  }
+  py::dict out;
+  out["count"] = g.gauges.size();
+  out["reals"] = bytes_of(reals);
+  out["ints"] = bytes_of(ints);
+  out["paths"] = with_paths ? py::object(paths) : py::object(py::none());
+  return out;
 }
 
 // A contiguous buffer of doubles (array('d'), memoryview), its length a multiple of `group`.
@@ -157,7 +206,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "voronoi_polygons",
-      [](const PyPolygons& polys, bool check, int pairs, int threads, double tile, const std::string& csv,
+      [](const py::object& polys, bool check, int pairs, int threads, double tile, const std::string& csv,
          double dbu) {
         const std::vector<Polygon> in = polygons_of(polys);
         return guarded([&] {
@@ -168,7 +217,9 @@ PYBIND11_MODULE(linf_opc_core, m) {
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0,
-      "Diagram of polygons [(outer, [holes])], rings as [(x, y)] in integer DBU. Shapes are merged first.\n"
+      "Diagram of polygons [(outer, [holes])], rings as [(x, y)] in integer DBU, or the same flat:\n"
+      "(points, rings), points array('q') x0, y0, x1, y1, ..., rings array('q') of point counts, each outer\n"
+      "ring followed by its holes with negative counts. Shapes are merged first.\n"
       "Returns {'pieces': [(kind, x1, y1, x2, y2, d1, d2, a_x1, a_y1, a_x2, a_y2, b_x1, b_y1, b_x2, b_y2,\n"
       "site_a, site_b)], 'check': {...}, 'sites': n, 'clip': box, 'seconds': {...}}.\n"
       "threads: worker threads of the builder, 0 for one per core.\n"
@@ -178,31 +229,52 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "gauges_polygons",
-      [](const PyPolygons& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
+      [](const py::object& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
          bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu) {
-        const std::vector<Polygon> in = polygons_of(polys);
+        std::vector<Polygon> in = polygons_of(polys);
         Result r;
+        Stretches st;
         Gauges g;
         double seconds = 0;
         {
           py::gil_scoped_release unlocked;
           r = voronoi_of_polygons(in, options(check, pairs, threads, tile));
+          std::vector<Polygon>().swap(in);
           if (!csv.empty()) write_pieces_csv(r.diagram, dbu, csv);
+          const auto t0 = std::chrono::steady_clock::now();
+          st = gauge_stretches(r.diagram);
+          seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        }
+        py::dict d = with_pieces ? to_python(r) : to_python_summary(r);
+        d["counts"] = piece_counts(r.diagram);
+        if (!with_pieces) d["pieces"] = r.diagram.pieces.size();
+        std::vector<Piece>().swap(r.diagram.pieces);  // the largest buffer; the gauges do not need it
+        {
+          py::gil_scoped_release unlocked;
           const auto t0 = std::chrono::steady_clock::now();
           GaugeOptions o;
           o.tooth_fraction = tooth_fraction;
           o.space_limit_widths = space_limit;
-          g = gauges_of(r.diagram, o);
-          seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          g = gauges_of(r.diagram.sites, std::move(st), o);
+          seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         }
-        return gauges_to_python(r, g, seconds, with_pieces, with_paths);
+        d["seconds"].cast<py::dict>()["gauges"] = seconds;
+        py::dict res;
+        res["gauges"] = gauge_columns(r.diagram.sites, g, with_paths);
+        res["stretches"] = g.stretches.size();
+        res["typical_width"] = g.typical_width;
+        res["space_limit"] = g.space_limit;
+        res["diagram"] = d;
+        return res;
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false, py::arg("paths") = false,
       py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0,
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
-      "Returns {'gauges': [(type, x1, y1, x2, y2, cx, cy, cd, score, norm_score, tiebreak, rank, teeth,\n"
-      "(a_x1, a_y1, a_x2, a_y2), (b_x1, b_y1, b_x2, b_y2), site_a, site_b, [stretch path (x, y)] if paths=True else None)] in rank order, 'stretches': n,\n"
+      "Returns {'gauges': {'count': n, 'reals': bytes, 'ints': bytes, 'paths': [[(x, y)]] if paths=True else None},\n"
+      "'stretches': n, ...}: the gauges in rank order as columns, float64 x10 per gauge (x1, y1, x2, y2, cx, cy, cd,\n"
+      "score, norm_score, tiebreak) and int32 x13 (rank, teeth, site_a, site_b, a_x1, a_y1, a_x2, a_y2, b_x1, b_y1,\n"
+      "b_x2, b_y2, type: 0 internal, 1 external, 2 sandwich, 3 comb, 4 T); 'stretches': the measurable stretches,\n"
       "'typical_width', 'space_limit', 'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}.\n"
       "DBU throughout. space_limit_widths: spaces wider than this many typical widths are not pattern (0: keep all).\n"
       "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them.");
@@ -327,7 +399,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "cgal_construction_seconds",
-      [](const PyPolygons& polys, std::uint64_t seed) {
+      [](const py::object& polys, std::uint64_t seed) {
         const std::vector<Polygon> in = polygons_of(polys);
         py::gil_scoped_release unlocked;
         return cgal_linf_construction_seconds(sites_of_polygons(merge_polygons(in)), seed);

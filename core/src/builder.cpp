@@ -12,50 +12,6 @@ namespace linf {
 namespace {
 using namespace detail;
 
-// Joins pieces of the same two owners that continue each other in a straight line.
-std::vector<Piece> join_pieces(std::vector<Piece> in) {
-  // A total order: workers deliver raw pieces in any order, the result must not depend on it.
-  std::sort(in.begin(), in.end(), [](const Piece& x, const Piece& y) {
-    return std::tie(x.a, x.b, x.p.x, x.p.y, x.q.x, x.q.y) < std::tie(y.a, y.b, y.p.x, y.p.y, y.q.x, y.q.y);
-  });
-  std::vector<Piece> out;
-  out.reserve(in.size());
-  auto close = [](const Vec2& p, const Vec2& q) {
-    return std::fabs(p.x - q.x) <= 1e-7 * (1 + std::fabs(p.x)) && std::fabs(p.y - q.y) <= 1e-7 * (1 + std::fabs(p.y));
-  };
-  auto collinear = [](const Piece& x, const Piece& y) {
-    const double ux = x.q.x - x.p.x, uy = x.q.y - x.p.y, vx = y.q.x - y.p.x, vy = y.q.y - y.p.y;
-    return std::fabs(ux * vy - uy * vx) <= 1e-9 * std::hypot(ux, uy) * std::hypot(vx, vy);
-  };
-  for (std::size_t g0 = 0; g0 < in.size();) {
-    std::size_t g1 = g0;
-    while (g1 < in.size() && in[g1].a == in[g0].a && in[g1].b == in[g0].b) ++g1;
-    std::vector<char> used(g1 - g0, 0);
-    for (std::size_t i = g0; i < g1; ++i) {
-      if (used[i - g0]) continue;
-      used[i - g0] = 1;
-      Piece cur = in[i];
-      for (bool grown = true; grown;) {
-        grown = false;
-        for (std::size_t j = g0; j < g1; ++j) {
-          if (used[j - g0] || !collinear(cur, in[j])) continue;
-          Piece o = in[j];
-          if (close(cur.q, o.q) || close(cur.p, o.p)) std::swap(o.p, o.q), std::swap(o.d1, o.d2);
-          if (close(cur.q, o.p)) { cur.q = o.q; cur.d2 = o.d2; }
-          else if (close(cur.p, o.q)) { cur.p = o.p; cur.d1 = o.d1; }
-          else continue;
-          used[j - g0] = 1;
-          grown = true;
-        }
-      }
-      out.push_back(cur);
-    }
-    g0 = g1;
-  }
-  return out;
-}
-
-
 // One pass of the subdivision over `root` with the sites `ids`, skipping boxes inside `hole`
 // and the parts of pieces there: the far field, or everything in one pass. The top levels,
 // breadth first, become the workers' tasks.
@@ -81,9 +37,7 @@ std::vector<Piece> run(const std::vector<Site>& sites, std::vector<int> ids, con
   std::vector<Builder> workers(worker_count(tasks.size(), opt.threads), Builder(model, root, hole));
   parallel_for(tasks.size(), opt.threads,
                [&](unsigned w, std::size_t i) { workers[w].process(tasks[i].first, tasks[i].second); });
-  std::vector<Piece> raw;
-  collect(model, workers, raw, st);
-  return raw;
+  return collect(model, workers, st);
 }
 
 // Rounding allowance of the pruning decisions, from the coordinate scale: one value for the
@@ -119,12 +73,14 @@ std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const Build
   }
   const double margin = std::floor(std::max({x2 - x1, y2 - y1, 64.0}) / 64) + 0.3125;
   const Box inner{x1 - margin, y1 - margin, x2 + margin, y2 + margin};
-  std::vector<Piece> raw;
+  // Pieces come in parts (one a tile) and are joined into one vector of the exact size, part
+  // by part: a growing vector would hold up to three times the pieces while it reallocates.
+  std::vector<std::vector<Piece>> parts;
   if (!opt.far_field_pass || inner.x1 <= clip.x1 || inner.y1 <= clip.y1 || inner.x2 >= clip.x2 ||
       inner.y2 >= clip.y2) {
-    raw = run(sites.sites, all, clip, nullptr, opt, tau, st);
+    parts.push_back(run(sites.sites, all, clip, nullptr, opt, tau, st));
   } else {
-    raw = build_tiled(sites.sites, inner, opt, tau, st);
+    parts = build_tiled(sites.sites, inner, opt, tau, st);
     std::vector<int> border;
     const double eps = 1e-9 * std::max({1.0, std::fabs(inner.x1), std::fabs(inner.x2), std::fabs(inner.y1),
                                         std::fabs(inner.y2)});
@@ -132,17 +88,25 @@ std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const Build
       return std::fabs(v.x - inner.x1) <= eps || std::fabs(v.x - inner.x2) <= eps || std::fabs(v.y - inner.y1) <= eps ||
              std::fabs(v.y - inner.y2) <= eps;
     };
-    for (const Piece& p : raw)
-      if (on_border(p.p) || on_border(p.q)) border.push_back(p.a), border.push_back(p.b);
+    for (const auto& part : parts)
+      for (const Piece& p : part)
+        if (on_border(p.p) || on_border(p.q)) border.push_back(p.a), border.push_back(p.b);
     std::sort(border.begin(), border.end());
     border.erase(std::unique(border.begin(), border.end()), border.end());
     if (border.size() < 2) border = all;  // one site owns the whole border: let the pass decide
-    std::vector<Piece> far = run(sites.sites, std::move(border), clip, &inner, opt, tau, st);
-    raw.insert(raw.end(), far.begin(), far.end());
+    parts.push_back(run(sites.sites, std::move(border), clip, &inner, opt, tau, st));
   }
-  st.raw_pieces = raw.size();
+  std::vector<Piece> raw;
+  std::size_t total = 0;
+  for (const auto& part : parts) total += part.size();
+  raw.reserve(total);
+  for (auto& part : parts) {
+    raw.insert(raw.end(), part.begin(), part.end());
+    std::vector<Piece>().swap(part);
+  }
   if (stats) *stats = st;
-  return join_pieces(std::move(raw));
+  join_pieces(raw);
+  return raw;
 }
 
 }  // namespace linf

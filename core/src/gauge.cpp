@@ -7,7 +7,6 @@
 #include <limits>
 #include <map>
 #include <tuple>
-#include <unordered_map>
 
 namespace linf {
 
@@ -104,12 +103,13 @@ Vec2 point_at_arc(const Stretch& s, double t) {
 
 // A stretch seen along the axis of a base edge: the clearance and the point at axis position u.
 struct Along {
-  const Stretch* s = nullptr;
+  Stretch s;
+  std::int32_t index = -1;  // in the layer's Stretches
   double ux = 1, uy = 0;
   std::vector<double> u;  // axis position of each path point
   double lo = 0, hi = 0;
 
-  Along(const Stretch& st, double x, double y) : s(&st), ux(x), uy(y) {
+  Along(const Stretch& st, std::int32_t i, double x, double y) : s(st), index(i), ux(x), uy(y) {
     for (const Vec2& p : st.path) u.push_back(p.x * ux + p.y * uy);
     lo = *std::min_element(u.begin(), u.end());
     hi = *std::max_element(u.begin(), u.end());
@@ -119,19 +119,18 @@ struct Along {
   double clearance(double t, Vec2* at = nullptr) const {
     double best = kNone;
     if (u.size() == 1 && std::fabs(u[0] - t) <= kTol) {
-      if (at) *at = s->path[0];
-      return s->clearance[0];
+      if (at) *at = s.path[0];
+      return s.clearance[0];
     }
     for (std::size_t i = 0; i + 1 < u.size(); ++i) {
       const double a = u[i], b = u[i + 1];
       if (t < std::min(a, b) - kTol || t > std::max(a, b) + kTol) continue;
       const double f = std::fabs(b - a) > kTol ? std::clamp((t - a) / (b - a), 0.0, 1.0) : 0.0;
-      double c = s->clearance[i] + f * (s->clearance[i + 1] - s->clearance[i]);
-      Vec2 p{s->path[i].x + f * (s->path[i + 1].x - s->path[i].x),
-             s->path[i].y + f * (s->path[i + 1].y - s->path[i].y)};
-      if (std::fabs(b - a) <= kTol && s->clearance[i + 1] < c) {
-        c = s->clearance[i + 1];
-        p = s->path[i + 1];
+      double c = s.clearance[i] + f * (s.clearance[i + 1] - s.clearance[i]);
+      Vec2 p{s.path[i].x + f * (s.path[i + 1].x - s.path[i].x), s.path[i].y + f * (s.path[i + 1].y - s.path[i].y)};
+      if (std::fabs(b - a) <= kTol && s.clearance[i + 1] < c) {
+        c = s.clearance[i + 1];
+        p = s.path[i + 1];
       }
       if (c < best) {
         best = c;
@@ -201,12 +200,14 @@ double least(const Stretch& st) { return *std::min_element(st.clearance.begin(),
 // point stretches too. A stretch is redundant when a related stretch (each owner replaced by
 // itself, its edges if a vertex, or its endpoints if an edge) that is preferred is at least as
 // narrow. Preferred: a chain over a point stretch, then fewer vertex owners.
-std::vector<bool> redundant(const Sites& s, const std::vector<Stretch>& all, const std::vector<bool>& ok) {
+std::vector<bool> redundant(const Sites& s, const Stretches& all, const std::vector<bool>& ok) {
   auto vertices = [&](const Stretch& st) { return int(s.sites[st.a].is_point()) + int(s.sites[st.b].is_point()); };
   auto rank = [&](const Stretch& st) { return (st.path.size() == 1 ? 4 : 0) + vertices(st); };
-  std::map<std::pair<std::int32_t, std::int32_t>, std::vector<std::size_t>> by_pair;
+  // (a, b, stretch) sorted: a flat index, where a map would cost more than the stretches.
+  std::vector<std::tuple<std::int32_t, std::int32_t, std::uint32_t>> by_pair;
   for (std::size_t i = 0; i < all.size(); ++i)
-    if (ok[i]) by_pair[{all[i].a, all[i].b}].push_back(i);
+    if (ok[i]) by_pair.emplace_back(all[i].a, all[i].b, std::uint32_t(i));
+  std::sort(by_pair.begin(), by_pair.end());
   auto related = [&](std::int32_t x) {
     const Site& t = s.sites[x];
     return std::vector<std::int32_t>{x, t.end0, t.end1};
@@ -219,10 +220,12 @@ std::vector<bool> redundant(const Sites& s, const std::vector<Stretch>& all, con
     for (std::int32_t x : related(st.a))
       for (std::int32_t y : related(st.b)) {
         if (x < 0 || y < 0) continue;
-        auto it = by_pair.find({std::min(x, y), std::max(x, y)});
-        if (it == by_pair.end()) continue;
-        for (std::size_t j : it->second)
-          if (rank(all[j]) < rank(st) && least(all[j]) <= c + kTol) out[i] = true;
+        const std::int32_t lo = std::min(x, y), hi = std::max(x, y);
+        for (auto it = std::lower_bound(by_pair.begin(), by_pair.end(), std::make_tuple(lo, hi, 0u));
+             it != by_pair.end() && std::get<0>(*it) == lo && std::get<1>(*it) == hi; ++it) {
+          const Stretch other = all[std::get<2>(*it)];
+          if (rank(other) < rank(st) && least(other) <= c + kTol) out[i] = true;
+        }
       }
   }
   return out;
@@ -245,31 +248,45 @@ Gauge plain_gauge(const Sites& sites, const Stretch& st, std::int32_t index) {
   return g;
 }
 
+// The external stretches at each site, in compressed rows.
+class ExternalAt {
+ public:
+  void build(std::size_t sites, const std::vector<std::pair<std::int32_t, std::int32_t>>& site_stretch) {
+    start_.assign(sites + 1, 0);
+    for (auto& [site, i] : site_stretch) ++start_[site + 1];
+    for (std::size_t k = 1; k < start_.size(); ++k) start_[k] += start_[k - 1];
+    ids_.resize(site_stretch.size());
+    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (auto& [site, i] : site_stretch) ids_[fill[site]++] = i;
+  }
+  Span<std::int32_t> of(std::int32_t site) const { return {ids_.data() + start_[site], start_[site + 1] - start_[site]}; }
+
+ private:
+  std::vector<std::uint32_t> start_;
+  std::vector<std::int32_t> ids_;
+};
+
 // Sandwich, comb and T gauges on one internal stretch E_y between edges a and b of a shape.
-void context_gauges(const Sites& sites, const std::vector<Stretch>& all, std::int32_t iy,
-                    const std::unordered_map<std::int32_t, std::vector<std::int32_t>>& external_at,
+void context_gauges(const Sites& sites, const Stretches& all, std::int32_t iy, const ExternalAt& external_at,
                     const GaugeOptions& opt, std::vector<Gauge>& out) {
-  const Stretch& ey = all[iy];
+  const Stretch ey = all[iy];
   const Site& sa = sites.sites[ey.a];
   const double ex = double(sa.b.x - sa.a.x), ey_ = double(sa.b.y - sa.a.y);
   const double el = std::hypot(ex, ey_);
   const double ux = ex / el, uy = ey_ / el;
-  const Along base(ey, ux, uy);
+  const Along base(ey, iy, ux, uy);
   if (base.hi - base.lo <= kTol) return;
 
   std::vector<Along> side[2];
   for (int k = 0; k < 2; ++k) {
-    auto it = external_at.find(k == 0 ? ey.a : ey.b);
-    if (it == external_at.end()) continue;
-    for (std::int32_t i : it->second) {
-      Along n(all[i], ux, uy);
+    for (std::int32_t i : external_at.of(k == 0 ? ey.a : ey.b)) {
+      Along n(all[i], i, ux, uy);
       if (std::min(n.hi, base.hi) - std::max(n.lo, base.lo) > kTol) side[k].push_back(std::move(n));
     }
   }
-  auto stretch_index = [&](const Along& a) { return std::int32_t(a.s - all.data()); };
   auto other_shape = [&](const Along& a) {
-    const Site& x = sites.sites[a.s->a];
-    return x.shape == sa.shape ? sites.sites[a.s->b].shape : x.shape;
+    const Site& x = sites.sites[a.s.a];
+    return x.shape == sa.shape ? sites.sites[a.s.b].shape : x.shape;
   };
 
   // Sandwich: a neighbour on each side, all three stretches overlapping along the base.
@@ -282,7 +299,7 @@ void context_gauges(const Sites& sites, const std::vector<Stretch>& all, std::in
         if (c.length <= kTol) continue;
         if (c.value < best.value - kTol || (c.value <= best.value + kTol && c.length > best.length + kTol)) {
           best = c;
-          neighbour = stretch_index(x.clearance(c.t) <= z.clearance(c.t) ? x : z);
+          neighbour = (x.clearance(c.t) <= z.clearance(c.t) ? x : z).index;
         }
       }
     if (neighbour >= 0) {
@@ -305,14 +322,14 @@ void context_gauges(const Sites& sites, const std::vector<Stretch>& all, std::in
     std::int32_t tooth = -1;
     std::map<std::int32_t, bool> shapes;
     for (const Along& t : side[k]) {
-      const Site& own = sites.sites[t.s->a == base_site ? t.s->b : t.s->a];
+      const Site& own = sites.sites[t.s.a == base_site ? t.s.b : t.s.a];
       if (length_of(own) > opt.tooth_fraction * length_of(sites.sites[base_site])) continue;
       const Common c = minimum_over({{&t, 1.0}, {&base, 1.0}});
       if (c.length <= kTol) continue;
       shapes[other_shape(t)] = true;
       if (c.value < best.value - kTol || (c.value <= best.value + kTol && c.length > best.length + kTol)) {
         best = c;
-        tooth = stretch_index(t);
+        tooth = t.index;
       }
     }
     if (tooth < 0) continue;
@@ -351,10 +368,17 @@ bool before(const Gauge& x, const Gauge& y) {
 
 }  // namespace
 
-Gauges gauges_of(const Diagram& d, const GaugeOptions& opt) {
+Stretches gauge_stretches(const Diagram& d) {
+  return stretches_of(d, [&](std::int32_t a, std::int32_t b, PieceKind kind) {
+    return kind != PieceKind::Adjacent && !adjacent(d.sites, a, b) && facing(d.sites, a, b);
+  });
+}
+
+Gauges gauges_of(const Diagram& d, const GaugeOptions& opt) { return gauges_of(d.sites, gauge_stretches(d), opt); }
+
+Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& opt) {
   Gauges r;
-  r.stretches = stretches_of(d);
-  const Sites& sites = d.sites;
+  r.stretches = std::move(stretches);
   const std::int32_t n = std::int32_t(r.stretches.size());
   std::vector<bool> ok(n);
   for (std::int32_t i = 0; i < n; ++i) ok[i] = measurable(sites, r.stretches[i]);
@@ -369,15 +393,19 @@ Gauges gauges_of(const Diagram& d, const GaugeOptions& opt) {
   for (std::int32_t i = 0; i < n; ++i)
     if (ok[i] && r.stretches[i].kind != PieceKind::Internal && 2 * least(r.stretches[i]) > r.space_limit + kTol)
       ok[i] = false;
-  std::unordered_map<std::int32_t, std::vector<std::int32_t>> external_at;
-  for (std::int32_t i = 0; i < n; ++i) {
-    const Stretch& s = r.stretches[i];
-    if (s.kind != PieceKind::External || !ok[i]) continue;
-    external_at[s.a].push_back(i);
-    external_at[s.b].push_back(i);
+  ExternalAt external_at;
+  {
+    std::vector<std::pair<std::int32_t, std::int32_t>> site_stretch;
+    for (std::int32_t i = 0; i < n; ++i) {
+      const Stretch s = r.stretches[i];
+      if (s.kind != PieceKind::External || !ok[i]) continue;
+      site_stretch.push_back({s.a, i});
+      site_stretch.push_back({s.b, i});
+    }
+    external_at.build(sites.sites.size(), site_stretch);
   }
   for (std::int32_t i = 0; i < n; ++i) {
-    const Stretch& s = r.stretches[i];
+    const Stretch s = r.stretches[i];
     if (!ok[i]) continue;
     r.gauges.push_back(plain_gauge(sites, s, i));
     if (s.kind == PieceKind::Internal && !sites.sites[s.a].is_point() && !sites.sites[s.b].is_point())

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <set>
 #include <unordered_map>
 #include <utility>
@@ -27,8 +26,7 @@ double dist(const Vec2& a, const Vec2& b) { return std::hypot(a.x - b.x, a.y - b
 // diagonal the L-inf bisector dips from both ends to the middle. Convexity means the midpoint
 // test finds every such dip; the dip's bottom is found by ternary search and becomes a path
 // point, so that the path's linear profile holds the true minimum.
-void refine(const Site& owner, const Vec2& u, const Vec2& v, double du, double dv, int depth,
-            std::vector<Vec2>& path, std::vector<double>& clearance) {
+void refine(const Site& owner, const Vec2& u, const Vec2& v, double du, double dv, int depth, Stretches& out) {
   auto at = [&](double t) { return Vec2{u.x + t * (v.x - u.x), u.y + t * (v.y - u.y)}; };
   auto f = [&](double t) {
     const Vec2 p = at(t);
@@ -42,35 +40,31 @@ void refine(const Site& owner, const Vec2& u, const Vec2& v, double du, double d
       (f(a) <= f(b) ? hi : lo) = (f(a) <= f(b) ? b : a);
     }
     const double t = 0.5 * (lo + hi), dt = f(t);
-    refine(owner, u, at(t), du, dt, depth - 1, path, clearance);
-    refine(owner, at(t), v, dt, dv, depth - 1, path, clearance);
+    refine(owner, u, at(t), du, dt, depth - 1, out);
+    refine(owner, at(t), v, dt, dv, depth - 1, out);
     return;
   }
-  path.push_back(v);
-  clearance.push_back(dv);
+  out.add(v, dv);
 }
 
 // Orders one owner pair's pieces into paths: start at an end of odd degree, walk while a
 // continuation exists, repeat until every piece is used.
-void chain(const Diagram& d, const std::vector<std::int32_t>& ids, std::vector<Stretch>& out) {
+void chain(const Diagram& d, const std::int32_t* ids, std::size_t n, Stretches& out) {
   std::unordered_map<Key, std::vector<std::int32_t>, KeyHash> at;
   std::vector<std::int32_t> real;
-  for (std::int32_t i : ids) {
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::int32_t i = ids[k];
     const Piece& p = d.pieces[i];
     if (key_of(p.p) == key_of(p.q)) continue;
     real.push_back(i);
     at[key_of(p.p)].push_back(i);
     at[key_of(p.q)].push_back(i);
   }
-  const Piece& first = d.pieces[ids.front()];
+  const Piece& first = d.pieces[ids[0]];
+  const std::int32_t a = std::min(first.a, first.b), b = std::max(first.a, first.b);
   if (real.empty()) {  // only degenerate pieces: one point
-    Stretch s;
-    s.a = std::min(first.a, first.b);
-    s.b = std::max(first.a, first.b);
-    s.kind = first.kind;
-    s.path = {first.p};
-    s.clearance = {first.d1};
-    out.push_back(std::move(s));
+    out.open(a, b, first.kind);
+    out.add(first.p, first.d1);
     return;
   }
   std::set<std::int32_t> unused(real.begin(), real.end());
@@ -82,9 +76,9 @@ void chain(const Diagram& d, const std::vector<std::int32_t>& ids, std::vector<S
       const Piece& p = d.pieces[i];
       bool found = false;
       for (const Key& k : {key_of(p.p), key_of(p.q)}) {
-        std::size_t n = 0;
-        for (std::int32_t j : at[k]) n += unused.count(j);
-        if (n % 2 == 1) {
+        std::size_t deg = 0;
+        for (std::int32_t j : at[k]) deg += unused.count(j);
+        if (deg % 2 == 1) {
           start = i;
           from = k;
           found = true;
@@ -93,10 +87,7 @@ void chain(const Diagram& d, const std::vector<std::int32_t>& ids, std::vector<S
       }
       if (found) break;
     }
-    Stretch s;
-    s.a = std::min(first.a, first.b);
-    s.b = std::max(first.a, first.b);
-    s.kind = d.pieces[start].kind;
+    out.open(a, b, d.pieces[start].kind);
     std::int32_t cur = start;
     while (cur >= 0) {
       unused.erase(cur);
@@ -104,12 +95,9 @@ void chain(const Diagram& d, const std::vector<std::int32_t>& ids, std::vector<S
       const bool forward = key_of(p.p) == from;
       const Vec2 u = forward ? p.p : p.q, v = forward ? p.q : p.p;
       const double du = forward ? p.d1 : p.d2, dv = forward ? p.d2 : p.d1;
-      if (s.path.empty()) {
-        s.path.push_back(u);
-        s.clearance.push_back(du);
-      }
-      s.length += dist(u, v);
-      refine(d.sites.sites[p.a], u, v, du, dv, 3, s.path, s.clearance);
+      if (out.empty_path()) out.add(u, du);
+      out.lengthen(dist(u, v));
+      refine(d.sites.sites[p.a], u, v, du, dv, 3, out);
       from = key_of(v);
       cur = -1;
       for (std::int32_t j : at[from])
@@ -118,7 +106,6 @@ void chain(const Diagram& d, const std::vector<std::int32_t>& ids, std::vector<S
           break;
         }
     }
-    out.push_back(std::move(s));
   }
 }
 
@@ -135,57 +122,82 @@ bool adjacent(const Sites& s, std::int32_t a, std::int32_t b) {
   return false;
 }
 
-std::vector<Stretch> stretches_of(const Diagram& d) {
-  std::map<std::pair<std::int32_t, std::int32_t>, std::vector<std::int32_t>> by_pair;
-  for (std::int32_t i = 0; i < std::int32_t(d.pieces.size()); ++i) {
+Stretches stretches_of(const Diagram& d, const StretchFilter& keep) {
+  auto pair_of = [&](std::int32_t i) {
     const Piece& p = d.pieces[i];
-    by_pair[{std::min(p.a, p.b), std::max(p.a, p.b)}].push_back(i);
-  }
-  std::vector<Stretch> out;
-  for (auto& [pair, ids] : by_pair) chain(d, ids, out);
-
-  // Vertices where three or more sites meet: pairs without a chain get a point stretch.
-  struct Meet {
-    Vec2 at;
-    double clearance = 0;
-    std::vector<std::pair<std::int32_t, PieceKind>> owners;
+    return std::make_pair(std::min(p.a, p.b), std::max(p.a, p.b));
   };
-  std::map<Key, Meet> meets;
-  for (const Piece& p : d.pieces)
-    for (int end = 0; end < 2; ++end) {
-      Meet& m = meets[key_of(end ? p.q : p.p)];
-      m.at = end ? p.q : p.p;
-      m.clearance = end ? p.d2 : p.d1;
-      m.owners.push_back({p.a, p.kind});
-      m.owners.push_back({p.b, p.kind});
-    }
-  for (auto& [k, m] : meets) {
-    if (m.clearance <= 0) continue;
+  // Kept pieces grouped by owner pair; ids only (4 bytes a piece), the pieces stay where they are.
+  std::vector<std::int32_t> order;
+  for (std::int32_t i = 0; i < std::int32_t(d.pieces.size()); ++i) {
+    const auto [a, b] = pair_of(i);
+    if (!keep || keep(a, b, d.pieces[i].kind)) order.push_back(i);
+  }
+  std::sort(order.begin(), order.end(), [&](std::int32_t x, std::int32_t y) {
+    return std::make_pair(pair_of(x), x) < std::make_pair(pair_of(y), y);
+  });
+  Stretches out;
+  for (std::size_t g0 = 0; g0 < order.size();) {
+    std::size_t g1 = g0 + 1;
+    while (g1 < order.size() && pair_of(order[g1]) == pair_of(order[g0])) ++g1;
+    chain(d, order.data() + g0, g1 - g0, out);
+    g0 = g1;
+  }
+  auto has_chain = [&](std::int32_t a, std::int32_t b) {
+    const auto it = std::lower_bound(order.begin(), order.end(), std::make_pair(a, b),
+                                     [&](std::int32_t x, const std::pair<std::int32_t, std::int32_t>& v) {
+                                       return pair_of(x) < v;
+                                     });
+    return it != order.end() && pair_of(*it) == std::make_pair(a, b);
+  };
+
+  // Vertices where three or more sites meet: pairs without a chain get a point stretch. The
+  // piece ends are sorted by position as (piece, end) ids, 4 bytes each, for the same reason.
+  std::vector<std::uint32_t> ends(2 * d.pieces.size());
+  for (std::uint32_t i = 0; i < ends.size(); ++i) ends[i] = i;
+  auto end_at = [&](std::uint32_t e) -> const Vec2& { return e & 1 ? d.pieces[e >> 1].q : d.pieces[e >> 1].p; };
+  std::sort(ends.begin(), ends.end(), [&](std::uint32_t x, std::uint32_t y) {
+    return std::make_pair(key_of(end_at(x)), x) < std::make_pair(key_of(end_at(y)), y);
+  });
+  std::vector<std::pair<std::int32_t, PieceKind>> owners;
+  for (std::size_t g0 = 0; g0 < ends.size();) {
+    const Key k = key_of(end_at(ends[g0]));
+    std::size_t g1 = g0 + 1;
+    while (g1 < ends.size() && key_of(end_at(ends[g1])) == k) ++g1;
+    // The last end at the vertex gives its position and clearance, as every end agrees on them.
+    const std::uint32_t last = ends[g1 - 1];
+    const Piece& lp = d.pieces[last >> 1];
+    const Vec2 at = end_at(last);
+    const double clearance = last & 1 ? lp.d2 : lp.d1;
+    const bool many = g1 - g0 >= 2;
+    owners.clear();
+    if (many && clearance > 0)
+      for (std::size_t e = g0; e < g1; ++e) {
+        const Piece& p = d.pieces[ends[e] >> 1];
+        owners.push_back({p.a, p.kind});
+        owners.push_back({p.b, p.kind});
+      }
+    g0 = g1;
+    if (owners.empty()) continue;
     // The pieces around a vertex agree on the side (inside or outside) unless it is on the
     // boundary, where the clearance is zero.
-    std::sort(m.owners.begin(), m.owners.end(),
-              [](auto& x, auto& y) { return x.first < y.first; });
-    m.owners.erase(std::unique(m.owners.begin(), m.owners.end(),
-                               [](auto& x, auto& y) { return x.first == y.first; }),
-                   m.owners.end());
-    if (m.owners.size() < 3) continue;
+    std::stable_sort(owners.begin(), owners.end(), [](auto& x, auto& y) { return x.first < y.first; });
+    owners.erase(std::unique(owners.begin(), owners.end(), [](auto& x, auto& y) { return x.first == y.first; }),
+                 owners.end());
+    if (owners.size() < 3) continue;
     PieceKind kind = PieceKind::Adjacent;
-    for (auto& o : m.owners)
+    for (auto& o : owners)
       if (o.second != PieceKind::Adjacent) kind = o.second;
     if (kind == PieceKind::Adjacent) continue;
-    for (std::size_t i = 0; i < m.owners.size(); ++i)
-      for (std::size_t j = i + 1; j < m.owners.size(); ++j) {
-        const std::int32_t a = m.owners[i].first, b = m.owners[j].first;
-        if (by_pair.count({a, b}) || adjacent(d.sites, a, b)) continue;
-        Stretch s;
-        s.a = a;
-        s.b = b;
-        s.kind = kind == PieceKind::Internal                                  ? PieceKind::Internal
-                 : d.sites.sites[a].shape == d.sites.sites[b].shape ? PieceKind::Notch
-                                                                      : PieceKind::External;
-        s.path = {m.at};
-        s.clearance = {m.clearance};
-        out.push_back(std::move(s));
+    for (std::size_t i = 0; i < owners.size(); ++i)
+      for (std::size_t j = i + 1; j < owners.size(); ++j) {
+        const std::int32_t a = owners[i].first, b = owners[j].first;
+        const PieceKind sk = kind == PieceKind::Internal                            ? PieceKind::Internal
+                             : d.sites.sites[a].shape == d.sites.sites[b].shape ? PieceKind::Notch
+                                                                                  : PieceKind::External;
+        if (adjacent(d.sites, a, b) || (keep && !keep(a, b, sk)) || has_chain(a, b)) continue;
+        out.open(a, b, sk);
+        out.add(at, clearance);
       }
   }
   return out;

@@ -131,7 +131,7 @@ constexpr std::size_t kAutoTileSites = std::size_t(1) << 16;
 
 }  // namespace
 
-std::vector<Piece> build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau,
+std::vector<std::vector<Piece>> build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau,
                                BuildStats& st) {
   const int T = task_level(sites.size());
   const std::size_t nt = std::size_t(1) << T;
@@ -145,7 +145,7 @@ std::vector<Piece> build_tiled(const std::vector<Site>& sites, const Box& root, 
   const std::vector<Box> tasks = grid_boxes(root, T);
   const SiteGrid grid(sites, root, T + 1);  // buckets finer than tasks: tighter halos
 
-  std::vector<Piece> raw;
+  std::vector<std::vector<Piece>> raw;
   std::vector<std::vector<int>> halo(per * per);
   struct Scratch { std::vector<std::uint32_t> seen; std::uint32_t stamp = 0; };
   std::vector<Scratch> scratch(worker_count(per * per, opt.threads));
@@ -171,7 +171,7 @@ std::vector<Piece> build_tiled(const std::vector<Site>& sites, const Box& root, 
       parallel_for(per * per, opt.threads, [&](unsigned w, std::size_t k) {
         workers[w].process(tasks[task_of(k)], halo[k]);
       });
-      collect(model, workers, raw, st);
+      raw.push_back(collect(model, workers, st));
       ++st.tiles;
       st.tasks += per * per;
       st.largest_tile_sites = std::max(st.largest_tile_sites, model.S.size());

@@ -16,8 +16,8 @@
 
 namespace linf::detail {
 
-// Pieces (global site ids, not yet joined) of the diagram inside `root`.
-std::vector<Piece> build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau,
+// Pieces (global site ids, not yet joined) of the diagram inside `root`, one vector a tile.
+std::vector<std::vector<Piece>> build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau,
                                BuildStats& st);
 
 }  // namespace linf::detail

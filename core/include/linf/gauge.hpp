@@ -43,12 +43,18 @@ struct GaugeOptions {
 };
 
 struct Gauges {
-  std::vector<Stretch> stretches;
+  Stretches stretches;        // the measurable ones (see gauges_of)
   std::vector<Gauge> gauges;  // ranked
   double typical_width = 0;   // extension-weighted median width of the internal gauges
   double space_limit = 0;     // widest space reported (infinite if no limit)
 };
 
 Gauges gauges_of(const Diagram& d, const GaugeOptions& opt = {});
+
+// The same in two steps, so that a caller can free the diagram's pieces in between (on a
+// large layer they are the largest thing in memory): the stretches the gauges are made from
+// (measurable pairs only), then the gauges.
+Stretches gauge_stretches(const Diagram& d);
+Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& opt = {});
 
 }  // namespace linf

@@ -7,22 +7,77 @@
 //        (the centre of a square via, where the four corner bisectors meet, is the only place
 //        its top and bottom edges are equally near).
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "linf/piece.hpp"
 
 namespace linf {
 
+// A read-only run of values inside one of Stretches' shared arrays.
+template <class T>
+struct Span {
+  const T* data = nullptr;
+  std::size_t n = 0;
+  const T* begin() const { return data; }
+  const T* end() const { return data + n; }
+  std::size_t size() const { return n; }
+  const T& operator[](std::size_t i) const { return data[i]; }
+  const T& front() const { return data[0]; }
+  const T& back() const { return data[n - 1]; }
+};
+
+// One stretch, a view into the Stretches it came from (valid while they live).
 struct Stretch {
   std::int32_t a = -1, b = -1;   // owner sites, a < b
   PieceKind kind = PieceKind::External;
-  std::vector<Vec2> path;        // at least one point; consecutive points are piece ends
-  std::vector<double> clearance; // L-inf clearance to the owners at each path point
+  Span<Vec2> path;               // at least one point; consecutive points are piece ends
+  Span<double> clearance;        // L-inf clearance to the owners at each path point
   double length = 0;             // Euclidean length of the path
 };
 
-std::vector<Stretch> stretches_of(const Diagram& d);
+// All stretches of a diagram in three flat arrays: a layer has millions, and a pair of heap
+// vectors each would cost more than the stretches themselves.
+class Stretches {
+ public:
+  std::size_t size() const { return heads_.size(); }
+  Stretch operator[](std::size_t i) const {
+    const Head& h = heads_[i];
+    return {h.a, h.b, h.kind, {points_.data() + h.first, h.count}, {clearance_.data() + h.first, h.count}, h.length};
+  }
+
+  // Building: open() a stretch, add() its points in order, close() it.
+  void open(std::int32_t a, std::int32_t b, PieceKind kind) {
+    heads_.push_back({a, b, std::uint32_t(points_.size()), 0, 0, kind});
+  }
+  void add(const Vec2& p, double clearance) {
+    points_.push_back(p);
+    clearance_.push_back(clearance);
+    ++heads_.back().count;
+  }
+  void lengthen(double d) { heads_.back().length += d; }
+  bool empty_path() const { return heads_.back().count == 0; }
+
+ private:
+  struct Head {
+    std::int32_t a, b;
+    std::uint32_t first, count;
+    double length;
+    PieceKind kind;
+  };
+  std::vector<Head> heads_;
+  std::vector<Vec2> points_;
+  std::vector<double> clearance_;
+};
+
+// Which owner pairs (a < b, with the stretch's kind) get stretches.
+using StretchFilter = std::function<bool(std::int32_t a, std::int32_t b, PieceKind kind)>;
+
+// Every stretch of the diagram, or only those between pairs `keep` accepts: the gauges need a
+// small share of them, and the rest would be most of the stage's memory on a large layer.
+Stretches stretches_of(const Diagram& d, const StretchFilter& keep = nullptr);
 
 // Two sites are adjacent when they share a vertex (an edge and its endpoint, two edges of one
 // corner, the two ends of one edge): the distance between them is not a width or a space.

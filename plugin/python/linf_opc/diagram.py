@@ -1,6 +1,6 @@
 """The diagram stage.
 
-in:  polygons [(outer, [holes])] in integer DBU
+in:  polygons [(outer, [holes])] in integer DBU, or a polygons.Polygons
 out: Diagram: pieces [Piece], site count, clip box, checker report, timings
 A wrong diagram is never returned: the core's independent checker raises DiagramError.
 """
@@ -8,6 +8,7 @@ import time
 from collections import Counter, namedtuple
 
 from . import core
+from .polygons import core_input
 
 KINDS = ("internal", "external", "notch", "adjacent")
 
@@ -34,5 +35,5 @@ def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=
     same for every tile size; tiles bound the memory the builder holds at once.
     csv_path: the core also writes voronoi.csv there (micrometres, `dbu`)."""
     t0 = time.perf_counter()
-    raw = core.voronoi_polygons(polygons, check, check_pairs, tile=tile, csv=csv_path or "", dbu=dbu)
+    raw = core.voronoi_polygons(core_input(polygons), check, check_pairs, tile=tile, csv=csv_path or "", dbu=dbu)
     return Diagram(raw, time.perf_counter() - t0, csv_path)

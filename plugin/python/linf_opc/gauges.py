@@ -1,14 +1,16 @@
 """The gauge stage (thesis 5.1).
 
-in:  polygons [(outer, [holes])] in integer DBU
+in:  polygons [(outer, [holes])] in integer DBU, or a polygons.Polygons
 out: Gauges: every gauge candidate of the layer, ranked (rank 1 = most likely to pinch or
      bridge), with the diagram's summary and timings. The diagram is built and checked first.
 The rules where the thesis leaves a choice open are in the README, "Gauges".
 """
 import time
 from collections import namedtuple
+from collections.abc import Sequence
 
 from . import core
+from .polygons import core_input
 
 TYPES = ("internal", "external", "sandwich", "comb", "T")
 
@@ -16,9 +18,40 @@ Gauge = namedtuple("Gauge", "type x1 y1 x2 y2 cx cy cd score norm_score tiebreak
                             "site_a_geom site_b_geom site_a site_b stretch")
 
 
+class GaugeTable(Sequence):
+    """The ranked gauges as the core's columns (see gauges_polygons), a Gauge made on access:
+    a large layer has millions of gauges, and a tuple each would be most of the flow's memory.
+    A read-only sequence: len, indexing (slices give lists), iteration in rank order."""
+
+    def __init__(self, columns):
+        self._n = columns["count"]
+        self._reals = memoryview(columns["reals"]).cast("d")
+        self._ints = memoryview(columns["ints"]).cast("i")
+        self._paths = columns["paths"]
+
+    def __len__(self):
+        return self._n
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(self._n))]
+        if i < 0:
+            i += self._n
+        if not 0 <= i < self._n:
+            raise IndexError("gauge index out of range")
+        r = self._reals[10 * i:10 * i + 10]
+        k = self._ints[13 * i:13 * i + 13]
+        return Gauge(TYPES[k[12]], *r, k[0], k[1], tuple(k[4:8]), tuple(k[8:12]), k[2], k[3],
+                     self._paths[i] if self._paths is not None else None)
+
+    def __iter__(self):
+        for i in range(self._n):
+            yield self[i]
+
+
 class Gauges:
     def __init__(self, raw, seconds_total):
-        self.gauges = [Gauge(*g) for g in raw["gauges"]]
+        self.gauges = GaugeTable(raw["gauges"])
         self.stretches = raw["stretches"]
         self.typical_width = raw["typical_width"]
         self.space_limit = raw["space_limit"]
@@ -47,7 +80,7 @@ def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, w
     `stretch` is its stretch's path [(x, y)] (else None). tile, csv_path, dbu: as in
     diagram.compute (the gauges are the same for every tile size)."""
     t0 = time.perf_counter()
-    raw = core.gauges_polygons(polygons, check, 2000, 0, tooth_fraction, space_limit_widths, with_diagram,
+    raw = core.gauges_polygons(core_input(polygons), check, 2000, 0, tooth_fraction, space_limit_widths, with_diagram,
                                with_paths, tile=tile, csv=csv_path or "", dbu=dbu)
     out = Gauges(raw, time.perf_counter() - t0)
     if with_diagram:

@@ -1,6 +1,8 @@
 """Reading a layer of a KLayout layout as plain polygons (the flow's input contract)."""
 import pya
 
+from .polygons import Polygons
+
 
 def parse_layer(text):
     """'L/D' -> (L, D). Raises ValueError with a readable message."""
@@ -19,10 +21,10 @@ def region_of(cell, layer_index):
 
 
 def polygons_of(region):
-    """[(outer, [holes])], rings as [(x, y)] in integer DBU: the core's input."""
-    out = []
+    """The core's input, a polygons.Polygons (flat arrays; iterating gives (outer, [holes]) with
+    rings as [(x, y)] in integer DBU)."""
+    out = Polygons()
     for poly in region.each():
-        outer = [(p.x, p.y) for p in poly.each_point_hull()]
-        holes = [[(p.x, p.y) for p in poly.each_point_hole(h)] for h in range(poly.holes())]
-        out.append((outer, holes))
+        out.add(((p.x, p.y) for p in poly.each_point_hull()),
+                [[(p.x, p.y) for p in poly.each_point_hole(h)] for h in range(poly.holes())])
     return out
