@@ -23,6 +23,11 @@ from linf_opc.polygons import core_input  # noqa: E402
 
 g = globals()
 t = {}
+peak = {}  # the process's peak memory (MB) after each stage: which stage sets it
+
+
+def mark(stage):
+    peak[stage] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
 def generated(n, seed=1):
@@ -58,6 +63,7 @@ li = ly.find_layer(L, D)
 region = layout.region_of(cell, li)
 polygons = layout.polygons_of(region)
 t["load"] = time.perf_counter() - t0
+mark("load")
 threads = int(g.get("threads") or 0)
 tile = float(g.get("tile") or -1)
 if g.get("polygons_json"):
@@ -69,6 +75,7 @@ t["diagram_and_gauges"] = time.perf_counter() - t0
 t["diagram"] = raw["diagram"]["seconds"]["merge"] + raw["diagram"]["seconds"]["build"] + raw["diagram"]["seconds"]["check"]
 t["gauges"] = raw["diagram"]["seconds"]["gauges"]
 res = gauge_stage.Gauges(raw, t["diagram_and_gauges"])
+mark("diagram_and_gauges")
 gs = res.gauges
 if g.get("markers"):
     ms = marker_io.load(g["markers"], ly, cell).boxes
@@ -80,9 +87,11 @@ t0 = time.perf_counter()
 pitch = selection.pitch_of(gs)
 st = selection.study(gs, ms, pitch, sizes=(7,), modes=("A",))
 t["selection"] = time.perf_counter() - t0
+mark("selection")
 t0 = time.perf_counter()
 sp = split.stratified(split.patterns_of(st.runs[("A", 7)], gs, ms))
 t["split"] = time.perf_counter() - t0
+mark("split")
 out = {"input": os.path.basename(g["input"]), "polygons": len(polygons), "sites": raw["diagram"]["sites"],
        "segments": sum(len(o) + sum(len(h) for h in hs) for o, hs in polygons), "gauges": len(gs),
        "markers": len(ms), "patterns": len(sp.patterns), "seconds": t, "threads": threads,
@@ -95,4 +104,5 @@ if g.get("drc") == "1":
     fresh.space_check(int(2 * w0), False, pya.Region.Square).size()
     t["klayout_width_space"] = time.perf_counter() - t0
 out["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+out["peak_mb_after"] = peak
 print("RESULT " + json.dumps(out))

@@ -398,6 +398,9 @@ class Builder {
     for (std::size_t j = 0; j < k; ++j)
       if (lc.af[j] >= 0 && lo[j] <= U + e) order.push_back({f_[C[j]].piece[lc.af[j]].at(c.x, c.y), j});
     std::sort(order.begin(), order.end());
+    // One contender: its greatest value is below every other site's least one by the
+    // allowance, so the cell is its region whole, with no tie on any edge: nothing to emit.
+    if (order.size() == 1) return;
     for (const auto& oi : order) {
       const std::size_t i = oi.second;
       Cell r = lc.cell;
