@@ -73,14 +73,18 @@ std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const Build
   }
   const double margin = std::floor(std::max({x2 - x1, y2 - y1, 64.0}) / 64) + 0.3125;
   const Box inner{x1 - margin, y1 - margin, x2 + margin, y2 + margin};
-  // Pieces come in parts (one a tile) and are joined into one vector of the exact size, part
-  // by part: a growing vector would hold up to three times the pieces while it reallocates.
-  std::vector<std::vector<Piece>> parts;
+  // Every tile's joined pieces are appended to one vector with room for the usual 3-3.5 pieces
+  // a site reserved at once: its pages are committed only as pieces are written, so nothing is
+  // ever copied or held twice (a growing vector would hold up to three times the pieces while
+  // it reallocates, a concatenation of per-tile vectors twice).
+  std::vector<Piece> raw;
+  raw.reserve(std::size_t(4.5 * double(sites.sites.size())) + 64);
+  auto append = [&](const std::vector<Piece>& part) { raw.insert(raw.end(), part.begin(), part.end()); };
   if (!opt.far_field_pass || inner.x1 <= clip.x1 || inner.y1 <= clip.y1 || inner.x2 >= clip.x2 ||
       inner.y2 >= clip.y2) {
-    parts.push_back(run(sites.sites, all, clip, nullptr, opt, tau, st));
+    append(run(sites.sites, all, clip, nullptr, opt, tau, st));
   } else {
-    parts = build_tiled(sites.sites, inner, opt, tau, st);
+    build_tiled(sites.sites, inner, opt, tau, st, raw);
     std::vector<int> border;
     const double eps = 1e-9 * std::max({1.0, std::fabs(inner.x1), std::fabs(inner.x2), std::fabs(inner.y1),
                                         std::fabs(inner.y2)});
@@ -88,21 +92,12 @@ std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const Build
       return std::fabs(v.x - inner.x1) <= eps || std::fabs(v.x - inner.x2) <= eps || std::fabs(v.y - inner.y1) <= eps ||
              std::fabs(v.y - inner.y2) <= eps;
     };
-    for (const auto& part : parts)
-      for (const Piece& p : part)
-        if (on_border(p.p) || on_border(p.q)) border.push_back(p.a), border.push_back(p.b);
+    for (const Piece& p : raw)
+      if (on_border(p.p) || on_border(p.q)) border.push_back(p.a), border.push_back(p.b);
     std::sort(border.begin(), border.end());
     border.erase(std::unique(border.begin(), border.end()), border.end());
     if (border.size() < 2) border = all;  // one site owns the whole border: let the pass decide
-    parts.push_back(run(sites.sites, std::move(border), clip, &inner, opt, tau, st));
-  }
-  std::vector<Piece> raw;
-  std::size_t total = 0;
-  for (const auto& part : parts) total += part.size();
-  raw.reserve(total);
-  for (auto& part : parts) {
-    raw.insert(raw.end(), part.begin(), part.end());
-    std::vector<Piece>().swap(part);
+    append(run(sites.sites, std::move(border), clip, &inner, opt, tau, st));
   }
   if (stats) *stats = st;
   join_pieces(raw);

@@ -170,16 +170,10 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
       if (rep.messages.size() < 20) rep.messages.push_back(m);
   }
 
-  // Completeness: a change of owner (by the ownership rule) between two close points needs a piece between them.
-  std::vector<Entry> pe;
-  pe.reserve(d.pieces.size());
-  for (std::size_t i = 0; i < d.pieces.size(); ++i) {
-    const Piece& p = d.pieces[i];
-    pe.emplace_back(BBox(BPt(std::min(p.p.x, p.q.x), std::min(p.p.y, p.q.y)),
-                         BPt(std::max(p.p.x, p.q.x), std::max(p.p.y, p.q.y))),
-                    std::int32_t(i));
-  }
-  Tree pieces(pe.begin(), pe.end());
+  // Completeness: a change of owner (by the ownership rule) between two close points needs a
+  // piece between them. The pairs are drawn first and indexed (a few thousand); then one pass
+  // over the pieces marks the pairs each one crosses. An index over the pieces instead would
+  // cost more memory than the pieces themselves on a large layer.
   std::mt19937_64 rng(opt.seed);
   const double mx = std::max(1.0, 0.1 * std::max(bx2 - bx1, by2 - by1));
   std::uniform_real_distribution<double> ux(bx1 - mx, bx2 + mx), uy(by1 - mx, by2 + mx), ua(0, 2 * M_PI);
@@ -191,6 +185,8 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
   std::sort(clear.begin(), clear.end());
   const double reach = 2 * (clear.empty() ? 1.0 : clear[clear.size() / 2]) + opt.pair_step;
   std::uniform_int_distribution<std::size_t> us(0, S.size() - 1);
+  struct Pair { Vec2 p, q; std::int32_t sp, sq; };
+  std::vector<Pair> separated;
   for (int i = 0; i < opt.crossing_pairs; ++i) {
     Vec2 p{ux(rng), uy(rng)};
     if (i % 4 == 1) {
@@ -215,24 +211,47 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
     auto inside = [&](const Vec2& v) { return v.x > d.clip.x1 && v.x < d.clip.x2 && v.y > d.clip.y1 && v.y < d.clip.y2; };
     if (!inside(p) || !inside(q)) continue;  // the diagram ends at the clip box
     const auto op = sites.owner(p.x, p.y, tol), oq = sites.owner(q.x, q.y, tol);
-    const std::int32_t sp = op.site, sq = oq.site;
     ++rep.pairs_tested;
-    if (!op.clear || !oq.clear || sp == sq) continue;
+    if (!op.clear || !oq.clear || op.site == oq.site) continue;
     if (op.dist <= tol || oq.dist <= tol) continue;  // on the boundary itself: no edge needed there
     ++rep.pairs_separated;
-    bool crossed = false;
-    bg::model::segment<BPt> s(BPt(p.x, p.y), BPt(q.x, q.y));
-    for (auto it = pieces.qbegin(bgi::intersects(bg::return_envelope<BBox>(s))); it != pieces.qend() && !crossed; ++it) {
-      const Piece& pc = d.pieces[it->second];
-      crossed = segments_cross(p, q, pc.p, pc.q);
+    separated.push_back({p, q, op.site, oq.site});
+  }
+  std::vector<Entry> pe;
+  pe.reserve(separated.size());
+  for (std::size_t i = 0; i < separated.size(); ++i) {
+    const Pair& x = separated[i];
+    pe.emplace_back(BBox(BPt(std::min(x.p.x, x.q.x), std::min(x.p.y, x.q.y)),
+                         BPt(std::max(x.p.x, x.q.x), std::max(x.p.y, x.q.y))),
+                    std::int32_t(i));
+  }
+  const Tree pairs(pe.begin(), pe.end());
+  // Chunks of pieces on the worker threads, each with its own marks, or-ed in the end.
+  std::vector<std::vector<char>> crossed(nchunks, std::vector<char>());
+  detail::parallel_for(nchunks, opt.threads, [&](unsigned, std::size_t c) {
+    std::vector<char>& mark = crossed[c];
+    for (std::size_t pi = c * chunk; pi < std::min(d.pieces.size(), (c + 1) * chunk); ++pi) {
+      const Piece& pc = d.pieces[pi];
+      const BBox b(BPt(std::min(pc.p.x, pc.q.x), std::min(pc.p.y, pc.q.y)),
+                   BPt(std::max(pc.p.x, pc.q.x), std::max(pc.p.y, pc.q.y)));
+      for (auto it = pairs.qbegin(bgi::intersects(b)); it != pairs.qend(); ++it) {
+        const Pair& x = separated[it->second];
+        if (!segments_cross(x.p, x.q, pc.p, pc.q)) continue;
+        if (mark.empty()) mark.assign(separated.size(), 0);
+        mark[it->second] = 1;
+      }
     }
-    if (!crossed) {
-      std::ostringstream m;
-      m.precision(12);
-      m << "no piece between (" << p.x << "," << p.y << ") nearest " << sp << " and (" << q.x << "," << q.y
-        << ") nearest " << sq;
-      fail(rep, rep.missing_edge_errors, m.str());
-    }
+  });
+  for (std::size_t i = 0; i < separated.size(); ++i) {
+    bool hit = false;
+    for (const auto& mark : crossed) hit = hit || (!mark.empty() && mark[i]);
+    if (hit) continue;
+    const Pair& x = separated[i];
+    std::ostringstream m;
+    m.precision(12);
+    m << "no piece between (" << x.p.x << "," << x.p.y << ") nearest " << x.sp << " and (" << x.q.x << ","
+      << x.q.y << ") nearest " << x.sq;
+    fail(rep, rep.missing_edge_errors, m.str());
   }
   return rep;
 }

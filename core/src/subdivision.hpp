@@ -720,7 +720,6 @@ std::vector<Piece> collect(const Model& m, const std::vector<Builder>& workers, 
   }
   st.raw_pieces += raw.size();
   join_pieces(raw);
-  raw.shrink_to_fit();
   return raw;
 }
 

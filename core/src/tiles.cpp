@@ -131,8 +131,8 @@ constexpr std::size_t kAutoTileSites = std::size_t(1) << 16;
 
 }  // namespace
 
-std::vector<std::vector<Piece>> build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau,
-                               BuildStats& st) {
+void build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau, BuildStats& st,
+                 std::vector<Piece>& out) {
   const int T = task_level(sites.size());
   const std::size_t nt = std::size_t(1) << T;
   int Lt = 0;  // tile level: the coarsest whose boxes are no larger than the tile size
@@ -145,7 +145,6 @@ std::vector<std::vector<Piece>> build_tiled(const std::vector<Site>& sites, cons
   const std::vector<Box> tasks = grid_boxes(root, T);
   const SiteGrid grid(sites, root, T + 1);  // buckets finer than tasks: tighter halos
 
-  std::vector<std::vector<Piece>> raw;
   std::vector<std::vector<int>> halo(per * per);
   struct Scratch { std::vector<std::uint32_t> seen; std::uint32_t stamp = 0; };
   std::vector<Scratch> scratch(worker_count(per * per, opt.threads));
@@ -171,12 +170,12 @@ std::vector<std::vector<Piece>> build_tiled(const std::vector<Site>& sites, cons
       parallel_for(per * per, opt.threads, [&](unsigned w, std::size_t k) {
         workers[w].process(tasks[task_of(k)], halo[k]);
       });
-      raw.push_back(collect(model, workers, st));
+      const std::vector<Piece> part = collect(model, workers, st);
+      out.insert(out.end(), part.begin(), part.end());
       ++st.tiles;
       st.tasks += per * per;
       st.largest_tile_sites = std::max(st.largest_tile_sites, model.S.size());
     }
-  return raw;
 }
 
 }  // namespace linf::detail

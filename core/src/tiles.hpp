@@ -16,8 +16,9 @@
 
 namespace linf::detail {
 
-// Pieces (global site ids, not yet joined) of the diagram inside `root`, one vector a tile.
-std::vector<std::vector<Piece>> build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau,
-                               BuildStats& st);
+// Pieces (global site ids, joined within each tile, not across tiles) of the diagram inside
+// `root`, appended to `out` tile by tile.
+void build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau, BuildStats& st,
+                 std::vector<Piece>& out);
 
 }  // namespace linf::detail
