@@ -353,6 +353,18 @@ PYBIND11_MODULE(linf_opc_core, m) {
       py::arg("points"), py::arg("side"),
       "The thesis's window-reduction heuristic: windows [(x1, y1, x2, y2)] covering the points.");
 
+  m.def(
+      "estimate_pitch",
+      [](const py::buffer& widths, const py::buffer& spaces) {
+        auto pairs = [](const py::buffer& b, const char* name) {
+          const std::vector<double> v = doubles_of(b, 2, name);
+          std::vector<std::pair<double, double>> out(v.size() / 2);
+          for (std::size_t i = 0; i < out.size(); ++i) out[i] = {v[2 * i], v[2 * i + 1]};
+          return out;
+        };
+        return estimate_pitch(pairs(widths, "widths"), pairs(spaces, "spaces"));
+      },
+      py::arg("widths"), py::arg("spaces"), "The same with flat array('d') of cd, extension pairs.");
   m.def("estimate_pitch", &estimate_pitch, py::arg("widths"), py::arg("spaces"),
         "Pitch from gauges: weighted median width + weighted median space; pairs are (cd, extension).");
 

@@ -6,8 +6,10 @@ out: Gauges: every gauge candidate of the layer, ranked (rank 1 = most likely to
 The rules where the thesis leaves a choice open are in the README, "Gauges".
 """
 import time
+from array import array
 from collections import namedtuple
 from collections.abc import Sequence
+from itertools import compress
 
 from . import core
 from .polygons import core_input
@@ -47,6 +49,27 @@ class GaugeTable(Sequence):
     def __iter__(self):
         for i in range(self._n):
             yield self[i]
+
+    # Whole columns, made without a Python object per gauge (the selection's inputs).
+    def spots(self):
+        """array('d'): cx, cy, type index (in TYPES), norm_score per gauge, rank order."""
+        out = array("d", bytes(32 * self._n))
+        m = memoryview(out)
+        m[0::4] = self._reals[4::10]
+        m[1::4] = self._reals[5::10]
+        m[2::4] = memoryview(array("d", self._ints[12::13]))
+        m[3::4] = self._reals[8::10]
+        return out
+
+    def cd_extension(self, type_name):
+        """array('d'): cd, tiebreak pairs of the gauges of one type, rank order."""
+        k = TYPES.index(type_name)
+        mask = array("B", self._ints[12::13]).tobytes().translate(bytes(int(c == k) for c in range(256)))
+        out = array("d", bytes(16 * mask.count(1)))
+        m = memoryview(out)
+        m[0::2] = memoryview(array("d", compress(self._reals[6::10], mask)))
+        m[1::2] = memoryview(array("d", compress(self._reals[9::10], mask)))
+        return out
 
 
 class Gauges:

@@ -11,6 +11,7 @@ import time
 from array import array
 
 from . import core
+from .gauges import TYPES as gauge_types
 
 SIZES = (5, 6, 7, 8)
 MODES = ("A", "B", "C")
@@ -20,6 +21,8 @@ MODE_NAMES = {"A": "marker centre strictly inside the window", "B": "marker enti
 
 def pitch_of(gauges):
     """Estimated pitch in DBU (core.estimate_pitch: weighted median width + space)."""
+    if hasattr(gauges, "cd_extension"):  # a GaugeTable: flat columns, no tuple per gauge
+        return core.estimate_pitch(gauges.cd_extension("internal"), gauges.cd_extension("external"))
     widths = [(g.cd, g.tiebreak) for g in gauges if g.type == "internal"]
     spaces = [(g.cd, g.tiebreak) for g in gauges if g.type == "external"]
     return core.estimate_pitch(widths, spaces)
@@ -114,7 +117,10 @@ def study(gauges, markers, pitch, sizes=SIZES, modes=MODES, types=("internal", "
     sizes, modes = list(sizes), list(modes)
     t0 = time.perf_counter()
     index = {t: i for i, t in enumerate(types)}
-    spots = array("d", [v for g in gauges for v in (g.cx, g.cy, index[g.type], g.norm_score)])
+    if hasattr(gauges, "spots") and tuple(types) == gauge_types:  # a GaugeTable: flat columns
+        spots = gauges.spots()
+    else:
+        spots = array("d", [v for g in gauges for v in (g.cx, g.cy, index[g.type], g.norm_score)])
     boxes = array("d", [v for b in markers for v in b])
     raw = core.select_windows(spots, boxes, [k * pitch for k in sizes], list(modes))
     runs = {}

@@ -1,0 +1,72 @@
+# The gauges reach Python as flat columns (gauges.GaugeTable): the per-gauge view, the whole
+# columns the selection reads (spots, cd/extension pairs) and the flat polygon input must all
+# say the same as the plain lists they replace.
+#   PYTHONPATH=plugin/python:build python3 tests/python/test_gauge_table.py
+import random
+import unittest
+from array import array
+
+import linf_opc_core as core
+from linf_opc import gauges, selection
+from linf_opc.polygons import Polygons
+
+
+def layout(seed, n=120):
+    rng = random.Random(seed)
+    polys = []
+    for _ in range(n):
+        x, y = rng.randrange(0, 3000), rng.randrange(0, 3000)
+        w, h = rng.randrange(10, 200), rng.randrange(10, 60)
+        if rng.random() < 0.5:
+            w, h = h, w
+        polys.append(([(x, y), (x + w, y), (x + w, y + h), (x, y + h)], []))
+    # one shape with a hole
+    polys.append(([(4000, 0), (4400, 0), (4400, 400), (4000, 400)], [[(4100, 100), (4100, 300), (4300, 300), (4300, 100)]]))
+    return polys
+
+
+class GaugeTableColumns(unittest.TestCase):
+    def setUp(self):
+        self.polys = layout(5)
+        self.table = gauges.compute(self.polys).gauges
+        self.rows = list(self.table)
+
+    def test_rows_are_ranked_and_typed(self):
+        self.assertGreater(len(self.rows), 100)
+        self.assertEqual([g.rank for g in self.rows], list(range(1, len(self.rows) + 1)))
+        self.assertEqual(set(g.type for g in self.rows), set(gauges.TYPES))
+        self.assertEqual(self.table[-1], self.rows[-1])
+        self.assertEqual(self.table[3:6], self.rows[3:6])
+        with self.assertRaises(IndexError):
+            self.table[len(self.rows)]
+
+    def test_spots_match_the_rows(self):
+        index = {t: i for i, t in enumerate(gauges.TYPES)}
+        expected = array("d", [v for g in self.rows for v in (g.cx, g.cy, index[g.type], g.norm_score)])
+        self.assertEqual(self.table.spots(), expected)
+
+    def test_cd_extension_and_pitch_match_the_rows(self):
+        for t in ("internal", "external", "T"):
+            expected = array("d", [v for g in self.rows if g.type == t for v in (g.cd, g.tiebreak)])
+            self.assertEqual(self.table.cd_extension(t), expected)
+        self.assertEqual(selection.pitch_of(self.table), selection.pitch_of(self.rows))
+        self.assertGreater(selection.pitch_of(self.table), 0)
+
+    def test_selection_same_from_table_and_rows(self):
+        markers = [(g.cx - 5, g.cy - 5, g.cx + 5, g.cy + 5) for g in self.rows[::40]]
+        pitch = selection.pitch_of(self.rows)
+        a = selection.study(self.table, markers, pitch, sizes=(5, 7), modes=("A", "C"))
+        b = selection.study(self.rows, markers, pitch, sizes=(5, 7), modes=("A", "C"))
+        for key in a.runs:
+            self.assertEqual(a.runs[key].windows, b.runs[key].windows)
+
+    def test_flat_polygons_give_the_same_gauges(self):
+        flat = Polygons.of(self.polys)
+        self.assertEqual(len(flat), len(self.polys))
+        self.assertEqual(list(flat), [(o, h) for o, h in self.polys])
+        self.assertEqual(list(gauges.compute(flat).gauges), self.rows)
+        self.assertEqual(core.voronoi_polygons(flat.flat())["pieces"], core.voronoi_polygons(self.polys)["pieces"])
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
