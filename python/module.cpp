@@ -208,9 +208,9 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "voronoi_polygons",
       [](const py::object& polys, bool check, int pairs, int threads, double tile, const std::string& csv,
          double dbu) {
-        const std::vector<Polygon> in = polygons_of(polys);
+        std::vector<Polygon> in = polygons_of(polys);
         return guarded([&] {
-          Result r = voronoi_of_polygons(in, options(check, pairs, threads, tile));
+          Result r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
           if (!csv.empty()) write_pieces_csv(r.diagram, dbu, csv);
           return r;
         });
@@ -238,8 +238,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
         double seconds = 0;
         {
           py::gil_scoped_release unlocked;
-          r = voronoi_of_polygons(in, options(check, pairs, threads, tile));
-          std::vector<Polygon>().swap(in);
+          r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
           if (!csv.empty()) write_pieces_csv(r.diagram, dbu, csv);
           const auto t0 = std::chrono::steady_clock::now();
           st = gauge_stretches(r.diagram);
@@ -320,7 +319,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
             r["windows"] = windows;
             r["used"] = s.used;
             r["failed"] = s.failed.size();
-            r["failed_spots"] = s.failed;
+            r["failed_spots"] = bytes_of(s.failed);  // int32 each: a layer can have millions
             r["used_by_type"] = tally(s.used_by_type);
             r["failed_by_type"] = tally(s.failed_by_type);
             r["redundant"] = s.redundant;
@@ -337,7 +336,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "per gauge in rank order; markers = array('d') of x1, y1, x2, y2 per marker; sides the window sides, modes among A (centre strictly inside), B (marker inside),\n"
       "C (overlap). Returns, modes outer and sides inner, [{'mode', 'side', 'windows': [(x1, y1, x2, y2,\n"
       "spot index, [markers newly covered])], 'used' (spot indices), 'failed' (count), 'failed_spots'\n"
-      "(spot indices), 'used_by_type',\n"
+      "(spot indices as int32 bytes), 'used_by_type',\n"
       "'failed_by_type' ([(count, lowest, highest normalised score)] per type index), 'redundant',\n"
       "'traversed', 'covered', 'seconds'}]. brute=True: the brute-force oracle.");
 

@@ -2,6 +2,8 @@
 
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
+#include <boost/iterator/counting_iterator.hpp>
+#include <boost/iterator/transform_iterator.hpp>
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -20,20 +22,27 @@ using BBox = bg::model::box<BPt>;
 using Entry = std::pair<BBox, std::int32_t>;
 using Tree = bgi::rtree<Entry, bgi::rstar<16>>;
 
+// A site's bounding box as an R-tree entry (assignable, as the packing algorithm needs).
+struct EntryOf {
+  const std::vector<Site>* s;
+  Entry operator()(std::int32_t i) const {
+    const Site& t = (*s)[std::size_t(i)];
+    return Entry(BBox(BPt(double(std::min(t.a.x, t.b.x)), double(std::min(t.a.y, t.b.y))),
+                      BPt(double(std::max(t.a.x, t.b.x)), double(std::max(t.a.y, t.b.y)))),
+                 i);
+  }
+};
+
 BBox square(double x, double y, double r) { return BBox(BPt(x - r, y - r), BPt(x + r, y + r)); }
 
 class SiteTree {
  public:
+  // Packed from entries made on the fly: a vector of them would cost as much again as the
+  // tree while it is built (hundreds of MB on a layer of millions of sites).
   explicit SiteTree(const std::vector<Site>& s) : s_(s) {
-    std::vector<Entry> e;
-    e.reserve(s.size());
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      const Site& t = s[i];
-      e.emplace_back(BBox(BPt(double(std::min(t.a.x, t.b.x)), double(std::min(t.a.y, t.b.y))),
-                          BPt(double(std::max(t.a.x, t.b.x)), double(std::max(t.a.y, t.b.y)))),
-                     std::int32_t(i));
-    }
-    tree_ = Tree(e.begin(), e.end());
+    const boost::counting_iterator<std::int32_t> first(0), last(std::int32_t(s.size()));
+    const EntryOf entry{&s};
+    tree_ = Tree(boost::make_transform_iterator(first, entry), boost::make_transform_iterator(last, entry));
   }
   // Sites strictly closer than r to (x, y).
   template <class F>

@@ -61,6 +61,15 @@ Result voronoi_of_polygons(const std::vector<Polygon>& polygons, const DiagramOp
   return finish(std::move(s), opt, since(t0));
 }
 
+Result voronoi_of_polygons(std::vector<Polygon>&& polygons, const DiagramOptions& opt) {
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<Polygon> merged = merge_polygons(polygons);
+  std::vector<Polygon>().swap(polygons);
+  Sites s = sites_of_polygons(merged);
+  std::vector<Polygon>().swap(merged);
+  return finish(std::move(s), opt, since(t0));
+}
+
 Result voronoi_of_sites(const std::vector<Point>& points, const std::vector<Segment>& segments,
                         const DiagramOptions& opt) {
   return finish(sites_of_plain(points, segments), opt, 0);

@@ -137,6 +137,11 @@ Stretches stretches_of(const Diagram& d, const StretchFilter& keep) {
     return std::make_pair(pair_of(x), x) < std::make_pair(pair_of(y), y);
   });
   Stretches out;
+  // Room reserved at once: pages are committed only as they are written, where vectors growing
+  // by doubling would hold up to three times the stretches while they reallocate. A stretch has
+  // at most its pieces' ends (a few more where a diagonal dip is refined); point stretches come
+  // on top.
+  out.reserve(order.size() + d.pieces.size() / 4 + 64, 2 * order.size() + d.pieces.size() / 4 + 64);
   for (std::size_t g0 = 0; g0 < order.size();) {
     std::size_t g1 = g0 + 1;
     while (g1 < order.size() && pair_of(order[g1]) == pair_of(order[g0])) ++g1;

@@ -52,6 +52,11 @@ bool clip_to_box(double px, double py, double qx, double qy, const Box& b, doubl
 // of one of them (both are convex polygons and the unit ball is a polygon).
 // The same holds for L1, whose breakpoints along a segment are only the axis crossings.
 double box_distance(const Box& b, const Site& s, bool l1 = false) {
+  if (s.a.x == s.b.x || s.a.y == s.b.y) {  // a point or an axis-parallel edge: a box itself
+    const double gx = std::max({b.x1 - double(std::max(s.a.x, s.b.x)), double(std::min(s.a.x, s.b.x)) - b.x2, 0.0});
+    const double gy = std::max({b.y1 - double(std::max(s.a.y, s.b.y)), double(std::min(s.a.y, s.b.y)) - b.y2, 0.0});
+    return l1 ? gx + gy : std::max(gx, gy);
+  }
   auto point_to_box = [&](double x, double y) {
     const double ex = std::max({b.x1 - x, x - b.x2, 0.0}), ey = std::max({b.y1 - y, y - b.y2, 0.0});
     return l1 ? ex + ey : std::max(ex, ey);
@@ -137,8 +142,9 @@ class Builder {
     }
     std::vector<int> keep;
     keep.reserve(cand.size());
+    const Reference ref = reference(b, best);
     for (int t : cand)
-      if (box_distance(b, S_[t]) <= U + tau_ && !dominated(b, t, best)) keep.push_back(t);
+      if (box_distance(b, S_[t]) <= U + tau_ && !dominated(ref, t)) keep.push_back(t);
     if (keep.size() > 2) prune_ties(b, keep);
     return keep;
   }
@@ -163,6 +169,22 @@ class Builder {
   std::vector<Piece> out;
 
  private:
+  // The reference u's values at the corners of the grown box, computed once per box.
+  struct Reference {
+    int u = -1;
+    Vec2 c[4];
+    double fu[4], gu[4], e[4];
+  };
+  Reference reference(const Box& b, int u) const {
+    Reference r;
+    r.u = u;
+    if (u < 0) return r;
+    const double m = 1e-3 * std::max(b.x2 - b.x1, b.y2 - b.y1) + tau_;
+    r.c[0] = {b.x1 - m, b.y1 - m}, r.c[1] = {b.x2 + m, b.y1 - m}, r.c[2] = {b.x2 + m, b.y2 + m}, r.c[3] = {b.x1 - m, b.y2 + m};
+    for (int k = 0; k < 4; ++k)
+      r.fu[k] = f_[u].at(r.c[k].x, r.c[k].y), r.gu[k] = g_[u].at(r.c[k].x, r.c[k].y), r.e[k] = tol(r.c[k]);
+    return r;
+  }
   // Does u come before t at every point of the box and just beyond its sides, by the
   // ownership rule (least L-inf, then least L1)? Then t owns nothing there, ties nowhere, and
   // is never the owner across a side, so it is no candidate. The lower-bound test cannot see
@@ -172,18 +194,12 @@ class Builder {
   // Sufficient test on the box grown by a small margin: some piece p of f_t above f_u (p <= f_t,
   // and p - f_u is concave, so its least value is at a corner); or some piece not below f_u
   // and some piece of g_t above g_u. Allowances: tol() at each corner.
-  bool dominated(const Box& b, int t, int u) const {
-    if (t == u) return false;
-    const double m = 1e-3 * std::max(b.x2 - b.x1, b.y2 - b.y1) + tau_;
-    const Vec2 c[4] = {{b.x1 - m, b.y1 - m}, {b.x2 + m, b.y1 - m}, {b.x2 + m, b.y2 + m}, {b.x1 - m, b.y2 + m}};
-    double fu[4], e[4];
-    for (int k = 0; k < 4; ++k) fu[k] = f_[u].at(c[k].x, c[k].y), e[k] = tol(c[k]);
-    const double mf = piece_margin(f_[t], c, 4, fu, e);
+  bool dominated(const Reference& r, int t) const {
+    if (r.u < 0 || t == r.u) return false;
+    const double mf = piece_margin(f_[t], r.c, 4, r.fu, r.e);
     if (mf > 1) return true;
     if (mf < -1) return false;
-    double gu[4];
-    for (int k = 0; k < 4; ++k) gu[k] = g_[u].at(c[k].x, c[k].y);
-    return piece_margin(g_[t], c, 4, gu, e) > 1;
+    return piece_margin(g_[t], r.c, 4, r.gu, r.e) > 1;
   }
 
   // How far the highest piece of fn stays above `ref` at the points, in allowances: the
@@ -231,8 +247,9 @@ class Builder {
       }
       // Members with identical L1 pieces are all kept: they may part just outside the box,
       // and the owner beyond a box side must be among the candidates.
+      const Reference ref = reference(b, best);
       for (std::size_t i = g0; i < g1; ++i)
-        if (box_distance(b, S_[flat[i].t], true) <= U + tau_ && !dominated(b, flat[i].t, best))
+        if (box_distance(b, S_[flat[i].t], true) <= U + tau_ && !dominated(ref, flat[i].t))
           rest.push_back(flat[i].t);
       g0 = g1;
     }
@@ -493,8 +510,8 @@ class Builder {
   // across may change there). Walking the envelope costs its size times the profiles, where
   // all pairwise crossings cost the square of the profiles: far from a row of equal shapes
   // dozens of sites tie along one edge.
-  template <class Profiles>
-  static void envelope_cuts(const Profiles& P, std::vector<double>& out) {
+  template <class Profiles, class Cuts>
+  static void envelope_cuts(const Profiles& P, Cuts& out) {
     for (const Profile& pr : P) out.insert(out.end(), pr.at.begin() + 1, pr.at.end());
     auto lowest_after = [&](double s) {
       std::size_t best = 0;
@@ -524,7 +541,7 @@ class Builder {
     const std::size_t n = r.v.size();
     for (std::size_t e = 0; e < n; ++e) {
       const Vec2 p = r.v[e], q = r.v[(e + 1) % n];
-      if (std::hypot(q.x - p.x, q.y - p.y) <= 1e-9) continue;
+      if ((q.x - p.x) * (q.x - p.x) + (q.y - p.y) * (q.y - p.y) <= 1e-18) continue;  // shorter than 1e-9
       const Vec2 nrm{q.y - p.y, p.x - q.x};
       const Vec2 m{0.5 * (p.x + q.x), 0.5 * (p.y + q.y)};
       if ((nrm.x < 0 && m.x <= clip_.x1) || (nrm.x > 0 && m.x >= clip_.x2) || (nrm.y < 0 && m.y <= clip_.y1) ||
@@ -559,7 +576,7 @@ class Builder {
       boost::container::small_vector<Profile, 4> g;
       for (std::size_t i = 0; i < tied.size(); ++i)
         if (sl[i] <= smin + 1e-12) g.push_back(profile(g_[tied[i]], p, q));
-      std::vector<double> cuts{0.0, 1.0};
+      boost::container::small_vector<double, 16> cuts{0.0, 1.0};
       if (g.size() > 1) envelope_cuts(g, cuts);
       std::sort(cuts.begin(), cuts.end());
       // Neighbouring parts with the same owner beyond go out as one piece.

@@ -36,6 +36,8 @@ struct Result {
 Box clip_box(const Sites& s);
 
 Result voronoi_of_polygons(const std::vector<Polygon>& polygons, const DiagramOptions& opt = {});
+// The same, freeing the input once it is merged (a large layer's input is hundreds of MB).
+Result voronoi_of_polygons(std::vector<Polygon>&& polygons, const DiagramOptions& opt = {});
 Result voronoi_of_sites(const std::vector<Point>& points, const std::vector<Segment>& segments,
                         const DiagramOptions& opt = {});
 

@@ -48,7 +48,12 @@ class Stretches {
     return {h.a, h.b, h.kind, {points_.data() + h.first, h.count}, {clearance_.data() + h.first, h.count}, h.length};
   }
 
-  // Building: open() a stretch, add() its points in order, close() it.
+  // Building: reserve() room if known, open() a stretch, add() its points in order.
+  void reserve(std::size_t stretches, std::size_t points) {
+    heads_.reserve(stretches);
+    points_.reserve(points);
+    clearance_.reserve(points);
+  }
   void open(std::int32_t a, std::int32_t b, PieceKind kind) {
     heads_.push_back({a, b, std::uint32_t(points_.size()), 0, 0, kind});
   }

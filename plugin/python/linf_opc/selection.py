@@ -68,7 +68,7 @@ class Run:
         self.windows = raw["windows"]  # (x1, y1, x2, y2, gauge index, [markers newly covered])
         self.used = [gauges[i] for i in raw["used"]]
         self.n_failed = raw["failed"]
-        self.failed_spots = raw["failed_spots"]
+        self.failed_spots = memoryview(raw["failed_spots"]).cast("i")  # gauge indices
         self.used_by_type = raw["used_by_type"]
         self.failed_by_type = raw["failed_by_type"]
         self.redundant = raw["redundant"]
