@@ -233,29 +233,26 @@ PYBIND11_MODULE(linf_opc_core, m) {
          bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu) {
         std::vector<Polygon> in = polygons_of(polys);
         Result r;
-        Stretches st;
         Gauges g;
         double seconds = 0;
         {
           py::gil_scoped_release unlocked;
           r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
           if (!csv.empty()) write_pieces_csv(r.diagram, dbu, csv);
-          const auto t0 = std::chrono::steady_clock::now();
-          st = gauge_stretches(r.diagram);
-          seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         }
         py::dict d = with_pieces ? to_python(r) : to_python_summary(r);
         d["counts"] = piece_counts(r.diagram);
         if (!with_pieces) d["pieces"] = r.diagram.pieces.size();
-        std::vector<Piece>().swap(r.diagram.pieces);  // the largest buffer; the gauges do not need it
         {
           py::gil_scoped_release unlocked;
           const auto t0 = std::chrono::steady_clock::now();
+          // The pieces, the largest buffer, are consumed as the stretches grow.
+          Stretches st = take_gauge_stretches(r.diagram);
           GaugeOptions o;
           o.tooth_fraction = tooth_fraction;
           o.space_limit_widths = space_limit;
           g = gauges_of(r.diagram.sites, std::move(st), o);
-          seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         }
         d["seconds"].cast<py::dict>()["gauges"] = seconds;
         py::dict res;

@@ -368,11 +368,16 @@ bool before(const Gauge& x, const Gauge& y) {
 
 }  // namespace
 
-Stretches gauge_stretches(const Diagram& d) {
-  return stretches_of(d, [&](std::int32_t a, std::int32_t b, PieceKind kind) {
-    return kind != PieceKind::Adjacent && !adjacent(d.sites, a, b) && facing(d.sites, a, b);
-  });
+namespace {
+StretchFilter measurable_pairs(const Sites& s) {
+  return [&s](std::int32_t a, std::int32_t b, PieceKind kind) {
+    return kind != PieceKind::Adjacent && !adjacent(s, a, b) && facing(s, a, b);
+  };
 }
+}  // namespace
+
+Stretches gauge_stretches(const Diagram& d) { return stretches_of(d, measurable_pairs(d.sites)); }
+Stretches take_gauge_stretches(Diagram& d) { return take_stretches(d, measurable_pairs(d.sites)); }
 
 Gauges gauges_of(const Diagram& d, const GaugeOptions& opt) { return gauges_of(d.sites, gauge_stretches(d), opt); }
 

@@ -1,6 +1,7 @@
 #include "linf/stretch.hpp"
 
 #include "linf/distance.hpp"
+#include "pages.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -122,42 +123,21 @@ bool adjacent(const Sites& s, std::int32_t a, std::int32_t b) {
   return false;
 }
 
-Stretches stretches_of(const Diagram& d, const StretchFilter& keep) {
-  auto pair_of = [&](std::int32_t i) {
-    const Piece& p = d.pieces[i];
-    return std::make_pair(std::min(p.a, p.b), std::max(p.a, p.b));
-  };
-  // Kept pieces grouped by owner pair; ids only (4 bytes a piece), the pieces stay where they are.
-  std::vector<std::int32_t> order;
-  for (std::int32_t i = 0; i < std::int32_t(d.pieces.size()); ++i) {
-    const auto [a, b] = pair_of(i);
-    if (!keep || keep(a, b, d.pieces[i].kind)) order.push_back(i);
-  }
-  std::sort(order.begin(), order.end(), [&](std::int32_t x, std::int32_t y) {
-    return std::make_pair(pair_of(x), x) < std::make_pair(pair_of(y), y);
-  });
-  Stretches out;
-  // Room reserved at once: pages are committed only as they are written, where vectors growing
-  // by doubling would hold up to three times the stretches while they reallocate. A stretch has
-  // at most its pieces' ends (a few more where a diagonal dip is refined); point stretches come
-  // on top.
-  out.reserve(order.size() + d.pieces.size() / 4 + 64, 2 * order.size() + d.pieces.size() / 4 + 64);
-  for (std::size_t g0 = 0; g0 < order.size();) {
-    std::size_t g1 = g0 + 1;
-    while (g1 < order.size() && pair_of(order[g1]) == pair_of(order[g0])) ++g1;
-    chain(d, order.data() + g0, g1 - g0, out);
-    g0 = g1;
-  }
-  auto has_chain = [&](std::int32_t a, std::int32_t b) {
-    const auto it = std::lower_bound(order.begin(), order.end(), std::make_pair(a, b),
-                                     [&](std::int32_t x, const std::pair<std::int32_t, std::int32_t>& v) {
-                                       return pair_of(x) < v;
-                                     });
-    return it != order.end() && pair_of(*it) == std::make_pair(a, b);
-  };
+namespace {
 
-  // Vertices where three or more sites meet: pairs without a chain get a point stretch. The
-  // piece ends are sorted by position as (piece, end) ids, 4 bytes each, for the same reason.
+// A point stretch waiting for its pair to be known chainless.
+struct PointStretch {
+  std::int32_t a, b;
+  PieceKind kind;
+  Vec2 at;
+  double clearance;
+};
+
+// Vertices where three or more sites meet: every pair of them that `keep` accepts, in the
+// order of the vertices. The piece ends are sorted by position as (piece, end) ids, 4 bytes
+// each: a layer has tens of millions.
+std::vector<PointStretch> meets(const Diagram& d, const StretchFilter& keep) {
+  std::vector<PointStretch> out;
   std::vector<std::uint32_t> ends(2 * d.pieces.size());
   for (std::uint32_t i = 0; i < ends.size(); ++i) ends[i] = i;
   auto end_at = [&](std::uint32_t e) -> const Vec2& { return e & 1 ? d.pieces[e >> 1].q : d.pieces[e >> 1].p; };
@@ -200,11 +180,95 @@ Stretches stretches_of(const Diagram& d, const StretchFilter& keep) {
         const PieceKind sk = kind == PieceKind::Internal                            ? PieceKind::Internal
                              : d.sites.sites[a].shape == d.sites.sites[b].shape ? PieceKind::Notch
                                                                                   : PieceKind::External;
-        if (adjacent(d.sites, a, b) || (keep && !keep(a, b, sk)) || has_chain(a, b)) continue;
-        out.open(a, b, sk);
-        out.add(at, clearance);
+        if (adjacent(d.sites, a, b) || (keep && !keep(a, b, sk))) continue;
+        out.push_back({a, b, sk, at, clearance});
       }
   }
+  return out;
+}
+
+std::pair<std::int32_t, std::int32_t> pair_of(const Piece& p) { return {std::min(p.a, p.b), std::max(p.a, p.b)}; }
+
+// Point stretches go after the chains, in vertex order, for the pairs that have no chain.
+void add_points(const std::vector<PointStretch>& points, std::vector<std::pair<std::int32_t, std::int32_t>> chained,
+                Stretches& out) {
+  std::sort(chained.begin(), chained.end());
+  for (const PointStretch& m : points) {
+    if (std::binary_search(chained.begin(), chained.end(), std::make_pair(m.a, m.b))) continue;
+    out.open(m.a, m.b, m.kind);
+    out.add(m.at, m.clearance);
+  }
+}
+
+// Room reserved at once: pages are committed only as they are written, where vectors growing
+// by doubling would hold up to three times the stretches while they reallocate. A stretch has
+// at most its pieces' ends (a few more where a diagonal dip is refined); point stretches come
+// on top.
+void reserve_for(std::size_t kept, std::size_t pieces, Stretches& out) {
+  out.reserve(kept + pieces / 4 + 64, 2 * kept + pieces / 4 + 64);
+}
+
+}  // namespace
+
+Stretches stretches_of(const Diagram& d, const StretchFilter& keep) {
+  // Kept pieces grouped by owner pair; ids only (4 bytes a piece), the pieces stay where they are.
+  std::vector<std::int32_t> order;
+  for (std::int32_t i = 0; i < std::int32_t(d.pieces.size()); ++i) {
+    const auto [a, b] = pair_of(d.pieces[i]);
+    if (!keep || keep(a, b, d.pieces[i].kind)) order.push_back(i);
+  }
+  std::sort(order.begin(), order.end(), [&](std::int32_t x, std::int32_t y) {
+    return std::make_pair(pair_of(d.pieces[x]), x) < std::make_pair(pair_of(d.pieces[y]), y);
+  });
+  const std::vector<PointStretch> points = meets(d, keep);
+  Stretches out;
+  reserve_for(order.size(), d.pieces.size(), out);
+  std::vector<std::pair<std::int32_t, std::int32_t>> chained;
+  for (std::size_t g0 = 0; g0 < order.size();) {
+    std::size_t g1 = g0 + 1;
+    while (g1 < order.size() && pair_of(d.pieces[order[g1]]) == pair_of(d.pieces[order[g0]])) ++g1;
+    chain(d, order.data() + g0, g1 - g0, out);
+    chained.push_back(pair_of(d.pieces[order[g0]]));
+    g0 = g1;
+  }
+  add_points(points, std::move(chained), out);
+  return out;
+}
+
+Stretches take_stretches(Diagram& d, const StretchFilter& keep) {
+  const bool grouped = std::is_sorted(d.pieces.begin(), d.pieces.end(), [](const Piece& x, const Piece& y) {
+    return pair_of(x) < pair_of(y);
+  });
+  if (!grouped) {  // not the builder's order: the general way, then the pieces go
+    Stretches out = stretches_of(d, keep);
+    std::vector<Piece>().swap(d.pieces);
+    return out;
+  }
+  const std::vector<PointStretch> points = meets(d, keep);
+  Stretches out;
+  reserve_for(d.pieces.size() / 2, d.pieces.size(), out);
+  std::vector<std::pair<std::int32_t, std::int32_t>> chained;
+  std::vector<std::int32_t> ids;
+  std::size_t released = 0;  // pieces before this are consumed and their pages given back
+  for (std::size_t g0 = 0; g0 < d.pieces.size();) {
+    std::size_t g1 = g0 + 1;
+    const auto pr = pair_of(d.pieces[g0]);
+    while (g1 < d.pieces.size() && pair_of(d.pieces[g1]) == pr) ++g1;
+    ids.clear();
+    for (std::size_t i = g0; i < g1; ++i)
+      if (!keep || keep(pr.first, pr.second, d.pieces[i].kind)) ids.push_back(std::int32_t(i));
+    if (!ids.empty()) {
+      chain(d, ids.data(), ids.size(), out);
+      chained.push_back(pr);
+    }
+    g0 = g1;
+    if (g0 - released >= (std::size_t(1) << 16)) {  // 4 MB of pieces at a time
+      detail::release_pages(d.pieces.data() + released, d.pieces.data() + g0);
+      released = g0;
+    }
+  }
+  std::vector<Piece>().swap(d.pieces);
+  add_points(points, std::move(chained), out);
   return out;
 }
 

@@ -537,8 +537,17 @@ class Builder {
 
   void emit(const Cell& r, const LocalCell& lc, std::size_t ti, const std::vector<int>& C) {
     const int t = C[ti];
-    const Affine& ft = f_[t].piece[lc.af[ti]];
     const std::size_t n = r.v.size();
+    // Every present site's value and the allowance at every vertex, once: each vertex is the
+    // end of two edges, and the tie test below reads them for every site.
+    const std::size_t k = C.size();
+    boost::container::small_vector<double, 160> val(n * k);
+    boost::container::small_vector<double, 10> tl(n);
+    for (std::size_t v = 0; v < n; ++v) {
+      tl[v] = tol(r.v[v]);
+      for (std::size_t j = 0; j < k; ++j)
+        if (lc.af[j] >= 0) val[v * k + j] = f_[C[j]].piece[lc.af[j]].at(r.v[v].x, r.v[v].y);
+    }
     for (std::size_t e = 0; e < n; ++e) {
       const Vec2 p = r.v[e], q = r.v[(e + 1) % n];
       if ((q.x - p.x) * (q.x - p.x) + (q.y - p.y) * (q.y - p.y) <= 1e-18) continue;  // shorter than 1e-9
@@ -554,13 +563,13 @@ class Builder {
       // Within the cell every L-inf function is affine, so a site ties with t along the whole
       // edge iff it does at both ends, and no L-inf piece changes along the edge's interior.
       // The cell is closed, so the active pieces give every function's value at its vertices.
-      const double ftp = ft.at(p.x, p.y), ftq = ft.at(q.x, q.y);
+      const std::size_t e2 = (e + 1) % n;
+      const double* vp = &val[e * k];
+      const double* vq = &val[e2 * k];
       boost::container::small_vector<int, 8> tied{t};
-      for (std::size_t j = 0; j < C.size(); ++j) {
+      for (std::size_t j = 0; j < k; ++j) {
         if (j == ti || lc.af[j] < 0) continue;
-        const Affine& fu = f_[C[j]].piece[lc.af[j]];
-        if (std::fabs(fu.at(p.x, p.y) - ftp) <= tol(p) && std::fabs(fu.at(q.x, q.y) - ftq) <= tol(q))
-          tied.push_back(C[j]);
+        if (std::fabs(vp[j] - vp[ti]) <= tl[e] && std::fabs(vq[j] - vq[ti]) <= tl[e2]) tied.push_back(C[j]);
       }
       if (tied.size() == 1) continue;  // a split inside t's own region
       // The owner beyond is one of the tied; emit_piece keeps only t < owner (the other side

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "linf/diagram.hpp"
 #include "linf/gauge.hpp"
@@ -159,4 +160,89 @@ TEST(Gauges, SpacesBeyondTenWidthsAreNotPattern) {
   all.space_limit_widths = 0;
   EXPECT_FALSE(of_type(gauges_of(far, all).gauges, GaugeType::External).empty());
   EXPECT_FALSE(of_type(gauges({box(0, 0, 1000, 40), box(0, 340, 1000, 380)}), GaugeType::External).empty());
+}
+
+// The flow builds the gauges' stretches by consuming the pieces (take_stretches, memory given
+// back as it goes); it must give the stretches of the const version, in the same order, with
+// and without the measurable-pair filter, on every style of layout.
+TEST(Stretches, TakingThePiecesGivesTheSameStretches) {
+  using linf::testing::Style;
+  std::size_t compared = 0;
+  for (Style style : {Style::Rectilinear, Style::Octilinear, Style::AnyAngle})
+    for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+      Result r = voronoi_of_polygons(linf::testing::random_layout(seed, style, 8));
+      const Stretches all = stretches_of(r.diagram);
+      const Stretches measurable = gauge_stretches(r.diagram);
+      Diagram copy = r.diagram;
+      const Stretches taken_all = take_stretches(copy);
+      EXPECT_TRUE(copy.pieces.empty());
+      const Stretches taken = take_gauge_stretches(r.diagram);
+      EXPECT_TRUE(r.diagram.pieces.empty());
+      for (const auto* pair : {&all, &measurable}) {
+        const Stretches& want = *pair;
+        const Stretches& got = pair == &all ? taken_all : taken;
+        ASSERT_EQ(want.size(), got.size()) << "seed " << seed;
+        for (std::size_t i = 0; i < want.size(); ++i) {
+          const Stretch a = want[i], b = got[i];
+          ASSERT_EQ(a.a, b.a);
+          ASSERT_EQ(a.b, b.b);
+          ASSERT_EQ(a.kind, b.kind);
+          ASSERT_EQ(a.length, b.length);
+          ASSERT_EQ(a.path.size(), b.path.size());
+          for (std::size_t k = 0; k < a.path.size(); ++k) {
+            ASSERT_EQ(a.path[k].x, b.path[k].x);
+            ASSERT_EQ(a.path[k].y, b.path[k].y);
+            ASSERT_EQ(a.clearance[k], b.clearance[k]);
+          }
+          ++compared;
+        }
+      }
+      EXPECT_LT(measurable.size(), all.size());
+    }
+  EXPECT_GT(compared, 1000u);
+}
+
+// Large enough that the consumed pieces' pages are given back several times on the way.
+TEST(Stretches, TakingManyPiecesGivesTheSameStretches) {
+  std::vector<Polygon> tracks;
+  std::mt19937_64 rng(11);
+  for (Coord row = 0; row < 100; ++row)
+    for (Coord x = Coord(rng() % 300); x < 60000;) {
+      const Coord w = 150 + Coord(rng() % 1350);
+      tracks.push_back(linf::testing::box(x, row * 100, x + w, row * 100 + 50));
+      x += w + 50 + Coord(rng() % 550);
+    }
+  Result r = voronoi_of_polygons(tracks);
+  ASSERT_GT(r.diagram.pieces.size(), std::size_t(2) << 16);  // released at least twice
+  const Stretches want = gauge_stretches(r.diagram);
+  const Stretches got = take_gauge_stretches(r.diagram);
+  ASSERT_EQ(want.size(), got.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    const Stretch a = want[i], b = got[i];
+    ASSERT_EQ(a.a, b.a);
+    ASSERT_EQ(a.b, b.b);
+    ASSERT_EQ(a.path.size(), b.path.size());
+    for (std::size_t k = 0; k < a.path.size(); ++k) {
+      ASSERT_EQ(a.path[k].x, b.path[k].x);
+      ASSERT_EQ(a.path[k].y, b.path[k].y);
+      ASSERT_EQ(a.clearance[k], b.clearance[k]);
+    }
+  }
+}
+
+// A diagram whose pieces are not grouped by owner pair (not the builder's order) is taken the
+// general way, with the same result.
+TEST(Stretches, TakingShuffledPiecesGivesTheSameStretches) {
+  Result r = voronoi_of_polygons(linf::testing::random_layout(3, linf::testing::Style::Rectilinear, 8));
+  Diagram shuffled = r.diagram;
+  std::reverse(shuffled.pieces.begin(), shuffled.pieces.end());
+  const Stretches want = stretches_of(shuffled);
+  const Stretches got = take_stretches(shuffled);
+  ASSERT_EQ(want.size(), got.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    EXPECT_EQ(want[i].a, got[i].a);
+    EXPECT_EQ(want[i].b, got[i].b);
+    EXPECT_EQ(want[i].path.size(), got[i].path.size());
+  }
+  EXPECT_TRUE(shuffled.pieces.empty());
 }

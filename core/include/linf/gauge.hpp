@@ -51,10 +51,11 @@ struct Gauges {
 
 Gauges gauges_of(const Diagram& d, const GaugeOptions& opt = {});
 
-// The same in two steps, so that a caller can free the diagram's pieces in between (on a
+// The same in two steps, so that a caller can let the diagram's pieces go in between (on a
 // large layer they are the largest thing in memory): the stretches the gauges are made from
-// (measurable pairs only), then the gauges.
+// (measurable pairs only), then the gauges. take_gauge_stretches consumes d.pieces.
 Stretches gauge_stretches(const Diagram& d);
+Stretches take_gauge_stretches(Diagram& d);
 Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& opt = {});
 
 }  // namespace linf

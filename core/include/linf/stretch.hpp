@@ -84,6 +84,11 @@ using StretchFilter = std::function<bool(std::int32_t a, std::int32_t b, PieceKi
 // small share of them, and the rest would be most of the stage's memory on a large layer.
 Stretches stretches_of(const Diagram& d, const StretchFilter& keep = nullptr);
 
+// The same, taking the diagram's pieces: they are consumed front to back and their memory given
+// back as the stretches grow, so that a large layer never holds both whole. d.pieces is empty
+// afterwards. Same stretches, same order.
+Stretches take_stretches(Diagram& d, const StretchFilter& keep = nullptr);
+
 // Two sites are adjacent when they share a vertex (an edge and its endpoint, two edges of one
 // corner, the two ends of one edge): the distance between them is not a width or a space.
 bool adjacent(const Sites& s, std::int32_t a, std::int32_t b);

@@ -317,7 +317,10 @@ class Selected:
         except ValueError:
             raise UsageError("max_norm must be a number, not %r" % args["max_norm"])
         # Only gauges at most this critical (normalised score) open windows; 1 = every gauge.
-        self.gauges = [g for g in result.gauges if g.norm_score <= self.max_norm + 1e-12]
+        # Normalised scores are at most 1, so max_norm >= 1 keeps the table itself (a list of
+        # every gauge would be most of the run's memory on a large layer).
+        self.gauges = (result.gauges if self.max_norm >= 1 else
+                       [g for g in result.gauges if g.norm_score <= self.max_norm + 1e-12])
         if not self.gauges:
             raise UsageError("no gauge has a normalised score at or below max_norm=%g" % self.max_norm)
         self.pitch_given = pitch is not None
