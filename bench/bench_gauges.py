@@ -3,6 +3,8 @@
 #   klayout -b -r bench/bench_gauges.py [-rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd t=DBU]
 # Default input: ../shared/data/iccad16/testcase3.oas, 1000/0. The checks use the threshold t
 # (default: 2 x the narrowest width the gauges find), so that they report real work.
+# -rd reach=1 also times the checks at the gauges' own reach: width_check above the widest width
+# and space_check above the widest space the gauges report, what KLayout needs to find them all.
 import os
 import sys
 import time
@@ -47,3 +49,15 @@ print("gauges (diagram included): %.2f s (read %.2f, merge %.2f, build %.2f, che
       % (t_gauges, t_read, s["merge"], s["build"], s["check"], s["gauges"]))
 print("KLayout width + space checks, t = %d DBU, Square: %.2f s (%d edge pairs)" % (t, t_drc, n_drc))
 print("ratio gauges / (width + space): %.2f (goal: under 1)" % (t_gauges / t_drc))
+
+if g.get("reach") == "1":
+    w_max = max(x.cd for x in r.gauges if x.type == "internal")
+    s_max = max(x.cd for x in r.gauges if x.type == "external")
+    t0 = time.perf_counter()
+    fresh = pya.Region(cell.begin_shapes_rec(li))
+    n_reach = (fresh.width_check(int(w_max) + 1, False, pya.Region.Square).size()
+               + fresh.space_check(int(s_max) + 1, False, pya.Region.Square).size())
+    t_reach = time.perf_counter() - t0
+    print("KLayout width + space checks at the gauges' reach (width t = %d, space t = %d DBU): %.2f s (%d edge pairs)"
+          % (int(w_max) + 1, int(s_max) + 1, t_reach, n_reach))
+    print("ratio gauges / (width + space at the gauges' reach): %.2f" % (t_gauges / t_reach))

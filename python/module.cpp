@@ -3,6 +3,7 @@
 
 #include <array>
 #include <climits>
+#include <cstring>
 #include <chrono>
 #include <string>
 #include <tuple>
@@ -132,27 +133,42 @@ py::bytes bytes_of(const std::vector<T>& v) {
   return py::bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
 }
 
+// A Python bytes object of n bytes, filled in place: a large layer's columns are hundreds of MB,
+// and a C++ buffer copied into bytes would hold them twice.
+py::bytes blank_bytes(std::size_t n, char*& data) {
+  PyObject* o = PyBytes_FromStringAndSize(nullptr, Py_ssize_t(n));
+  if (!o) throw py::error_already_set();
+  data = PyBytes_AsString(o);
+  return py::reinterpret_steal<py::bytes>(o);
+}
+
 // Gauges as columns in rank order, row-major blocks of plain numbers (a Python tuple a gauge
 // would be most of the flow's memory on a large layer; plugin/python/linf_opc/gauges.py wraps
 // them): "reals" float64 x10 (x1, y1, x2, y2, cx, cy, cd, score, norm_score, tiebreak), "ints"
 // int32 x13 (rank, teeth, site_a, site_b, a_x1, a_y1, a_x2, a_y2, b_x1, b_y1, b_x2, b_y2, type
-// index in internal, external, sandwich, comb, T).
-py::dict gauge_columns(const Sites& sites, const Gauges& g, bool with_paths) {
+// index in internal, external, sandwich, comb, T). The stretches are let go first unless their
+// paths are asked for.
+py::dict gauge_columns(const Sites& sites, Gauges& g, bool with_paths) {
   const auto& S = sites.sites;
-  std::vector<double> reals;
-  std::vector<std::int32_t> ints;
-  reals.reserve(10 * g.gauges.size());
-  ints.reserve(13 * g.gauges.size());
+  if (!with_paths) g.stretches = Stretches();
+  const std::size_t n = g.gauges.size();
+  char *rd = nullptr, *id = nullptr;
+  py::bytes reals = blank_bytes(10 * sizeof(double) * n, rd);
+  py::bytes ints = blank_bytes(13 * sizeof(std::int32_t) * n, id);
   py::list paths;
   for (const Gauge& x : g.gauges) {
-    for (double v : {x.p.x, x.p.y, x.q.x, x.q.y, x.at.x, x.at.y, x.cd, x.score, x.norm_score, x.tiebreak})
-      reals.push_back(v);
+    for (double v : {x.p.x, x.p.y, x.q.x, x.q.y, x.at.x, x.at.y, x.cd, x.score, x.norm_score, x.tiebreak}) {
+      std::memcpy(rd, &v, sizeof v);
+      rd += sizeof v;
+    }
     const Site& a = S[x.a];
     const Site& b = S[x.b];
     for (Coord v : {Coord(x.rank), Coord(x.teeth), Coord(x.a), Coord(x.b), a.a.x, a.a.y, a.b.x, a.b.y, b.a.x, b.a.y,
                     b.b.x, b.b.y, Coord(x.type)}) {
       if (v < INT32_MIN || v > INT32_MAX) throw py::value_error("coordinates beyond 32 bits (layouts have 32)");
-      ints.push_back(std::int32_t(v));
+      const std::int32_t w = std::int32_t(v);
+      std::memcpy(id, &w, sizeof w);
+      id += sizeof w;
     }
     if (with_paths) {
       py::list pts;
@@ -161,9 +177,9 @@ py::dict gauge_columns(const Sites& sites, const Gauges& g, bool with_paths) {
     }
   }
   py::dict out;
-  out["count"] = g.gauges.size();
-  out["reals"] = bytes_of(reals);
-  out["ints"] = bytes_of(ints);
+  out["count"] = n;
+  out["reals"] = reals;
+  out["ints"] = ints;
   out["paths"] = with_paths ? py::object(paths) : py::object(py::none());
   return out;
 }
@@ -256,8 +272,8 @@ PYBIND11_MODULE(linf_opc_core, m) {
         }
         d["seconds"].cast<py::dict>()["gauges"] = seconds;
         py::dict res;
-        res["gauges"] = gauge_columns(r.diagram.sites, g, with_paths);
         res["stretches"] = g.stretches.size();
+        res["gauges"] = gauge_columns(r.diagram.sites, g, with_paths);
         res["typical_width"] = g.typical_width;
         res["space_limit"] = g.space_limit;
         res["diagram"] = d;
