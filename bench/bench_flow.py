@@ -74,10 +74,10 @@ for inp, layer, cell, markers in inputs:
     s = two["seconds"]
     flow = s["load"] + s["diagram_and_gauges"] + s["selection"] + s["split"]
     tl = two["tiles"]
-    row = ("| %s | %d | %d | %.2f s | %.2f s | %.2f s | %.2f s | %.2f s | %d (%d of %d) | %.0f | %s | %s | %.2f s | %.1f |"
+    row = ("| %s | %d | %d | %.2f s | %.2f s | %.2f s | %.2f s | %.2f s | %d (%d of %d) | %s | %s | %s | %.2f s | %.1f |"
            % (two["input"] + (" " + cell if cell else ""), two["polygons"], two["segments"], s["load"], s["diagram"],
               s["gauges"], s["selection"], s["split"], tl["tiles"], tl["largest_tile_sites"], two["sites"],
-              two["peak_rss_mb"], "%.2f s" % t_cgal if t_cgal else why, "%.1f" % (s["diagram"] / t_cgal) if t_cgal else "-",
+              "%.0f (load %.0f)" % (two["peak_rss_mb"], two["peak_mb_after"]["load"]), "%.2f s" % t_cgal if t_cgal else why, "%.1f" % (s["diagram"] / t_cgal) if t_cgal else "-",
               s["klayout_width_space"], flow / s["klayout_width_space"]))
     if "--threads" in args:
         if two["polygons"] <= 20000:

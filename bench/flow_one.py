@@ -67,8 +67,12 @@ mark("load")
 threads = int(g.get("threads") or 0)
 tile = float(g.get("tile") or -1)
 if g.get("polygons_json"):
-    with open(g["polygons_json"], "w") as f:
-        json.dump(list(polygons), f)
+    with open(g["polygons_json"], "w") as f:  # one polygon at a time: no list of them all in memory
+        f.write("[")
+        for i, (outer, holes) in enumerate(polygons):
+            f.write("," if i else "")
+            json.dump([outer, holes], f)
+        f.write("]")
 t0 = time.perf_counter()
 raw = core.gauges_polygons(core_input(polygons), True, 2000, threads, tile=tile)
 t["diagram_and_gauges"] = time.perf_counter() - t0
