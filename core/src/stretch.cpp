@@ -133,10 +133,11 @@ struct PointStretch {
   double clearance;
 };
 
-// Vertices where three or more sites meet: every pair of them that `keep` accepts, in the
-// order of the vertices. The piece ends are sorted by position as (piece, end) ids, 4 bytes
-// each: a layer has tens of millions.
-std::vector<PointStretch> meets(const Diagram& d, const StretchFilter& keep) {
+// Vertices where three or more sites meet: every pair of them that `keep` accepts and that has
+// no chain, in the order of the vertices. The piece ends are sorted by position as (piece, end)
+// ids, 4 bytes each: a layer has tens of millions.
+template <class HasChain>
+std::vector<PointStretch> meets(const Diagram& d, const StretchFilter& keep, const HasChain& has_chain) {
   std::vector<PointStretch> out;
   std::vector<std::uint32_t> ends(2 * d.pieces.size());
   for (std::uint32_t i = 0; i < ends.size(); ++i) ends[i] = i;
@@ -180,7 +181,7 @@ std::vector<PointStretch> meets(const Diagram& d, const StretchFilter& keep) {
         const PieceKind sk = kind == PieceKind::Internal                            ? PieceKind::Internal
                              : d.sites.sites[a].shape == d.sites.sites[b].shape ? PieceKind::Notch
                                                                                   : PieceKind::External;
-        if (adjacent(d.sites, a, b) || (keep && !keep(a, b, sk))) continue;
+        if (adjacent(d.sites, a, b) || (keep && !keep(a, b, sk)) || has_chain(a, b)) continue;
         out.push_back({a, b, sk, at, clearance});
       }
   }
@@ -189,12 +190,9 @@ std::vector<PointStretch> meets(const Diagram& d, const StretchFilter& keep) {
 
 std::pair<std::int32_t, std::int32_t> pair_of(const Piece& p) { return {std::min(p.a, p.b), std::max(p.a, p.b)}; }
 
-// Point stretches go after the chains, in vertex order, for the pairs that have no chain.
-void add_points(const std::vector<PointStretch>& points, std::vector<std::pair<std::int32_t, std::int32_t>> chained,
-                Stretches& out) {
-  std::sort(chained.begin(), chained.end());
+// Point stretches go after the chains, in vertex order.
+void add_points(const std::vector<PointStretch>& points, Stretches& out) {
   for (const PointStretch& m : points) {
-    if (std::binary_search(chained.begin(), chained.end(), std::make_pair(m.a, m.b))) continue;
     out.open(m.a, m.b, m.kind);
     out.add(m.at, m.clearance);
   }
@@ -220,18 +218,22 @@ Stretches stretches_of(const Diagram& d, const StretchFilter& keep) {
   std::sort(order.begin(), order.end(), [&](std::int32_t x, std::int32_t y) {
     return std::make_pair(pair_of(d.pieces[x]), x) < std::make_pair(pair_of(d.pieces[y]), y);
   });
-  const std::vector<PointStretch> points = meets(d, keep);
+  const auto points = meets(d, keep, [&](std::int32_t a, std::int32_t b) {
+    const auto it = std::lower_bound(order.begin(), order.end(), std::make_pair(a, b),
+                                     [&](std::int32_t x, const std::pair<std::int32_t, std::int32_t>& v) {
+                                       return pair_of(d.pieces[x]) < v;
+                                     });
+    return it != order.end() && pair_of(d.pieces[*it]) == std::make_pair(a, b);
+  });
   Stretches out;
   reserve_for(order.size(), d.pieces.size(), out);
-  std::vector<std::pair<std::int32_t, std::int32_t>> chained;
   for (std::size_t g0 = 0; g0 < order.size();) {
     std::size_t g1 = g0 + 1;
     while (g1 < order.size() && pair_of(d.pieces[order[g1]]) == pair_of(d.pieces[order[g0]])) ++g1;
     chain(d, order.data() + g0, g1 - g0, out);
-    chained.push_back(pair_of(d.pieces[order[g0]]));
     g0 = g1;
   }
-  add_points(points, std::move(chained), out);
+  add_points(points, out);
   return out;
 }
 
@@ -244,10 +246,17 @@ Stretches take_stretches(Diagram& d, const StretchFilter& keep) {
     std::vector<Piece>().swap(d.pieces);
     return out;
   }
-  const std::vector<PointStretch> points = meets(d, keep);
+  // A pair has a chain when some piece of its group is kept; the groups are found in place.
+  const auto points = meets(d, keep, [&](std::int32_t a, std::int32_t b) {
+    const auto pr = std::make_pair(a, b);
+    auto it = std::lower_bound(d.pieces.begin(), d.pieces.end(), pr,
+                               [](const Piece& x, const std::pair<std::int32_t, std::int32_t>& v) { return pair_of(x) < v; });
+    for (; it != d.pieces.end() && pair_of(*it) == pr; ++it)
+      if (!keep || keep(a, b, it->kind)) return true;
+    return false;
+  });
   Stretches out;
   reserve_for(d.pieces.size() / 2, d.pieces.size(), out);
-  std::vector<std::pair<std::int32_t, std::int32_t>> chained;
   std::vector<std::int32_t> ids;
   std::size_t released = 0;  // pieces before this are consumed and their pages given back
   for (std::size_t g0 = 0; g0 < d.pieces.size();) {
@@ -257,10 +266,7 @@ Stretches take_stretches(Diagram& d, const StretchFilter& keep) {
     ids.clear();
     for (std::size_t i = g0; i < g1; ++i)
       if (!keep || keep(pr.first, pr.second, d.pieces[i].kind)) ids.push_back(std::int32_t(i));
-    if (!ids.empty()) {
-      chain(d, ids.data(), ids.size(), out);
-      chained.push_back(pr);
-    }
+    if (!ids.empty()) chain(d, ids.data(), ids.size(), out);
     g0 = g1;
     if (g0 - released >= (std::size_t(1) << 16)) {  // 4 MB of pieces at a time
       detail::release_pages(d.pieces.data() + released, d.pieces.data() + g0);
@@ -268,7 +274,7 @@ Stretches take_stretches(Diagram& d, const StretchFilter& keep) {
     }
   }
   std::vector<Piece>().swap(d.pieces);
-  add_points(points, std::move(chained), out);
+  add_points(points, out);
   return out;
 }
 
