@@ -2,27 +2,19 @@
 # columns the selection reads (spots, cd/extension pairs) and the flat polygon input must all
 # say the same as the plain lists they replace.
 #   PYTHONPATH=plugin/python:build python3 tests/python/test_gauge_table.py
-import random
 import unittest
 from array import array
 
 import linf_opc_core as core
 from linf_opc import gauges, selection
 from linf_opc.polygons import Polygons
+from test_determinism import layout as random_boxes
 
 
-def layout(seed, n=120):
-    rng = random.Random(seed)
-    polys = []
-    for _ in range(n):
-        x, y = rng.randrange(0, 3000), rng.randrange(0, 3000)
-        w, h = rng.randrange(10, 200), rng.randrange(10, 60)
-        if rng.random() < 0.5:
-            w, h = h, w
-        polys.append(([(x, y), (x + w, y), (x + w, y + h), (x, y + h)], []))
-    # one shape with a hole
-    polys.append(([(4000, 0), (4400, 0), (4400, 400), (4000, 400)], [[(4100, 100), (4100, 300), (4300, 300), (4300, 100)]]))
-    return polys
+def layout(seed):
+    """Random boxes (tests/python/test_determinism.py) and one shape with a hole."""
+    return random_boxes(seed, 120) + [([(4000, 0), (4400, 0), (4400, 400), (4000, 400)],
+                                        [[(4100, 100), (4100, 300), (4300, 300), (4300, 100)]])]
 
 
 class GaugeTableColumns(unittest.TestCase):
