@@ -125,7 +125,7 @@ bool adjacent(const Sites& s, std::int32_t a, std::int32_t b) {
 
 namespace {
 
-// A point stretch waiting for its pair to be known chainless.
+// A point stretch: a pair without a chain whose regions meet at a vertex; added after the chains.
 struct PointStretch {
   std::int32_t a, b;
   PieceKind kind;
