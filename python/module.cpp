@@ -119,12 +119,11 @@ py::dict to_python(const Result& r) {
 py::tuple site_tuple(const Site& s) { return py::make_tuple(s.a.x, s.a.y, s.b.x, s.b.y); }
 
 py::dict piece_counts(const Diagram& d) {
+  std::array<std::size_t, 4> n{};  // counted in C++: a large layer has tens of millions of pieces
+  for (const Piece& p : d.pieces) ++n[std::size_t(p.kind)];
   py::dict counts;
-  for (const char* k : {"internal", "external", "notch", "adjacent"}) counts[k] = 0;
-  for (const Piece& p : d.pieces) {
-    const char* k = kind_name(p.kind);
-    counts[k] = counts[k].cast<long>() + 1;
-  }
+  for (PieceKind k : {PieceKind::Internal, PieceKind::External, PieceKind::Notch, PieceKind::Adjacent})
+    counts[kind_name(k)] = n[std::size_t(k)];
   return counts;
 }
 
