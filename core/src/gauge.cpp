@@ -189,9 +189,10 @@ Gauge measured(const Sites& sites, GaugeType type, const Vec2& at, double cleara
   return g;
 }
 
-bool measurable(const Sites& s, const Stretch& st) {
-  return st.kind != PieceKind::Adjacent && !adjacent(s, st.a, st.b) && facing(s, st.a, st.b);
+bool measurable(const Sites& s, std::int32_t a, std::int32_t b, PieceKind kind) {
+  return kind != PieceKind::Adjacent && !adjacent(s, a, b) && facing(s, a, b);
 }
+bool measurable(const Sites& s, const Stretch& st) { return measurable(s, st.a, st.b, st.kind); }
 
 double least(const Stretch& st) { return *std::min_element(st.clearance.begin(), st.clearance.end()); }
 
@@ -366,14 +367,10 @@ bool before(const Gauge& x, const Gauge& y) {
          std::make_tuple(grid(y.score), context(y.type), -grid(y.tiebreak), grid(y.at.x), grid(y.at.y), y.a, y.b);
 }
 
-}  // namespace
-
-namespace {
 StretchFilter measurable_pairs(const Sites& s) {
-  return [&s](std::int32_t a, std::int32_t b, PieceKind kind) {
-    return kind != PieceKind::Adjacent && !adjacent(s, a, b) && facing(s, a, b);
-  };
+  return [&s](std::int32_t a, std::int32_t b, PieceKind kind) { return measurable(s, a, b, kind); };
 }
+
 }  // namespace
 
 Stretches gauge_stretches(const Diagram& d) { return stretches_of(d, measurable_pairs(d.sites)); }
