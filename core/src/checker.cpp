@@ -235,26 +235,20 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
                     std::int32_t(i));
   }
   const Tree pairs(pe.begin(), pe.end());
-  // Chunks of pieces on the worker threads, each with its own marks, or-ed in the end.
-  std::vector<std::vector<char>> crossed(nchunks, std::vector<char>());
-  detail::parallel_for(nchunks, opt.threads, [&](unsigned, std::size_t c) {
-    std::vector<char>& mark = crossed[c];
+  // Chunks of pieces on the worker threads, each worker with its own marks, or-ed in the end.
+  std::vector<std::vector<char>> crossed(detail::worker_count(nchunks, opt.threads),
+                                         std::vector<char>(separated.size(), 0));
+  detail::parallel_for(nchunks, opt.threads, [&](unsigned w, std::size_t c) {
     for (std::size_t pi = c * chunk; pi < std::min(d.pieces.size(), (c + 1) * chunk); ++pi) {
       const Piece& pc = d.pieces[pi];
       const BBox b(BPt(std::min(pc.p.x, pc.q.x), std::min(pc.p.y, pc.q.y)),
                    BPt(std::max(pc.p.x, pc.q.x), std::max(pc.p.y, pc.q.y)));
-      for (auto it = pairs.qbegin(bgi::intersects(b)); it != pairs.qend(); ++it) {
-        const Pair& x = separated[it->second];
-        if (!segments_cross(x.p, x.q, pc.p, pc.q)) continue;
-        if (mark.empty()) mark.assign(separated.size(), 0);
-        mark[it->second] = 1;
-      }
+      for (auto it = pairs.qbegin(bgi::intersects(b)); it != pairs.qend(); ++it)
+        if (segments_cross(separated[it->second].p, separated[it->second].q, pc.p, pc.q)) crossed[w][it->second] = 1;
     }
   });
   for (std::size_t i = 0; i < separated.size(); ++i) {
-    bool hit = false;
-    for (const auto& mark : crossed) hit = hit || (!mark.empty() && mark[i]);
-    if (hit) continue;
+    if (std::any_of(crossed.begin(), crossed.end(), [&](const std::vector<char>& mark) { return mark[i]; })) continue;
     const Pair& x = separated[i];
     std::ostringstream m;
     m.precision(12);
