@@ -12,6 +12,7 @@
 #include "linf/csv.hpp"
 #include "linf/diagram.hpp"
 #include "linf/engine.hpp"
+#include "linf/gds.hpp"
 #include "linf/farthest.hpp"
 #include "linf/gauge.hpp"
 #include "linf/selection.hpp"
@@ -118,15 +119,6 @@ py::dict to_python(const Result& r) {
 
 py::tuple site_tuple(const Site& s) { return py::make_tuple(s.a.x, s.a.y, s.b.x, s.b.y); }
 
-py::dict piece_counts(const Diagram& d) {
-  std::array<std::size_t, 4> n{};  // counted in C++: a large layer has tens of millions of pieces
-  for (const Piece& p : d.pieces) ++n[std::size_t(p.kind)];
-  py::dict counts;
-  for (PieceKind k : {PieceKind::Internal, PieceKind::External, PieceKind::Notch, PieceKind::Adjacent})
-    counts[kind_name(k)] = n[std::size_t(k)];
-  return counts;
-}
-
 template <class T>
 py::bytes bytes_of(const std::vector<T>& v) {
   return py::bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
@@ -203,6 +195,39 @@ DiagramOptions options(bool check, int pairs, int threads, double tile = 0) {
   return o;
 }
 
+// The files written while the core holds the diagram: voronoi.csv, and the pieces as GDSII for
+// the editor to read (`gds_layer`: the input's layer number, datatypes 200 + kind).
+struct Files {
+  std::string csv, gds;
+  int gds_layer = 0;
+  double dbu = 1.0;
+  DrawCounts drawn{};
+  void write(Diagram& d) {
+    if (!csv.empty()) write_pieces_csv(d, dbu, csv);
+    if (!gds.empty()) {
+      GdsLayers L;
+      L.layer = gds_layer;
+      L.dbu = dbu;
+      drawn = write_pieces_gds(d, L, gds);
+    }
+  }
+  DrawCounts counts{};  // pieces per kind
+
+  void count(const Diagram& d) {
+    for (const Piece& p : d.pieces) ++counts[std::size_t(p.kind)];  // in C++: tens of millions on a layer
+  }
+  void report(py::dict& d) const {
+    d["counts"] = counts_dict(counts);
+    if (!gds.empty()) d["drawn"] = counts_dict(drawn);
+  }
+  static py::dict counts_dict(const DrawCounts& n) {
+    py::dict out;
+    for (PieceKind k : {PieceKind::Internal, PieceKind::External, PieceKind::Notch, PieceKind::Adjacent})
+      out[kind_name(k)] = n[std::size_t(k)];
+    return out;
+  }
+};
+
 // DiagramError becomes ValueError with the checker's first message; nothing is returned.
 template <class F>
 py::dict guarded(F&& f) {
@@ -222,16 +247,24 @@ PYBIND11_MODULE(linf_opc_core, m) {
   m.def(
       "voronoi_polygons",
       [](const py::object& polys, bool check, int pairs, int threads, double tile, const std::string& csv,
-         double dbu) {
+         double dbu, bool with_pieces, const std::string& gds, int gds_layer) {
         std::vector<Polygon> in = polygons_of(polys);
-        return guarded([&] {
-          Result r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
-          if (!csv.empty()) write_pieces_csv(r.diagram, dbu, csv);
-          return r;
-        });
+        Files files{csv, gds, gds_layer, dbu};
+        Result r;
+        {
+          py::gil_scoped_release unlocked;
+          r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
+          files.write(r.diagram);
+          files.count(r.diagram);
+        }
+        py::dict d = with_pieces ? to_python(r) : to_python_summary(r);
+        if (!with_pieces) d["pieces"] = r.diagram.pieces.size();
+        files.report(d);
+        return d;
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
-      py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0,
+      py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("pieces") = true,
+      py::arg("gds") = "", py::arg("gds_layer") = 0,
       "Diagram of polygons [(outer, [holes])], rings as [(x, y)] in integer DBU, or the same flat:\n"
       "(points, rings), points array('q') x0, y0, x1, y1, ..., rings array('q') of point counts, each outer\n"
       "ring followed by its holes with negative counts. Shapes are merged first.\n"
@@ -240,23 +273,29 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "threads: worker threads of the builder, 0 for one per core.\n"
       "tile: side of the builder's tiles in DBU (same diagram for every size); 0 one tile, < 0 automatic.\n"
       "csv: also write the pieces there (voronoi.csv, micrometres: DBU times dbu).\n"
-      "Raises DiagramError if the independent checker rejects the diagram.");
+      "gds: also write them there as GDSII, zero-width paths on gds_layer, datatype 200 + kind index (dbu: its\n"
+      "units); 'drawn' then counts them per kind (a piece rounding to one grid point is not drawn).\n"
+      "pieces=False: 'pieces' is only their number (a large layer's pieces as tuples take gigabytes).\n"
+      "'counts': pieces per kind. Raises DiagramError if the independent checker rejects the diagram.");
 
   m.def(
       "gauges_polygons",
       [](const py::object& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
-         bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu) {
+         bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu, const std::string& gds,
+         int gds_layer) {
         std::vector<Polygon> in = polygons_of(polys);
+        Files files{csv, gds, gds_layer, dbu};
         Result r;
         Gauges g;
         double seconds = 0;
         {
           py::gil_scoped_release unlocked;
           r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
-          if (!csv.empty()) write_pieces_csv(r.diagram, dbu, csv);
+          files.write(r.diagram);
+          files.count(r.diagram);
         }
         py::dict d = with_pieces ? to_python(r) : to_python_summary(r);
-        d["counts"] = piece_counts(r.diagram);
+        files.report(d);
         if (!with_pieces) d["pieces"] = r.diagram.pieces.size();
         {
           py::gil_scoped_release unlocked;
@@ -280,7 +319,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false, py::arg("paths") = false,
-      py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0,
+      py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("gds") = "", py::arg("gds_layer") = 0,
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
       "Returns {'gauges': {'count': n, 'reals': bytes, 'ints': bytes, 'paths': [[(x, y)]] if paths=True else None},\n"
       "'stretches': n, ...}: the gauges in rank order as columns, float64 x10 per gauge (x1, y1, x2, y2, cx, cy, cd,\n"
@@ -288,7 +327,8 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "b_x2, b_y2, type: 0 internal, 1 external, 2 sandwich, 3 comb, 4 T); 'stretches': the measurable stretches,\n"
       "'typical_width', 'space_limit', 'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}.\n"
       "DBU throughout. space_limit_widths: spaces wider than this many typical widths are not pattern (0: keep all).\n"
-      "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them.");
+      "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them. csv, gds, gds_layer, dbu:\n"
+      "as in voronoi_polygons.");
 
   m.def(
       "select_windows",

@@ -224,7 +224,7 @@ def gauges_line(s, gauges, dbu, d):
 def cmd_voronoi(args):
     inp = Input.from_args(args)
     s = write_voronoi(inp, diagram_stage.compute(inp.polygons, tile=inp.tile, csv_path=inp.file("voronoi.csv"),
-                                                 dbu=inp.dbu))
+                                                 dbu=inp.dbu, with_pieces=False, draw_layer=inp.layer))
     output.write_json(s, inp.file("summary.json"))
     return voronoi_line(s, inp.dir)
 
@@ -445,7 +445,7 @@ def flow(inp, args, progress=None):
     whose cancel raises). Returns (summary line, rdb, chosen selection run)."""
     step = progress or (lambda stage: None)
     step("diagram and gauges")
-    result = gauge_stage.compute(inp.polygons, with_diagram=True, tile=inp.tile, csv_path=inp.file("voronoi.csv"),
+    result = gauge_stage.compute(inp.polygons, draw_layer=inp.layer, tile=inp.tile, csv_path=inp.file("voronoi.csv"),
                                  dbu=inp.dbu)
     step("writing the diagram and the gauges")
     sv = write_voronoi(inp, result.pieces_diagram)

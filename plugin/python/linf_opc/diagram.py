@@ -1,11 +1,15 @@
 """The diagram stage.
 
 in:  polygons [(outer, [holes])] in integer DBU, or a polygons.Polygons
-out: Diagram: pieces [Piece], site count, clip box, checker report, timings
+out: Diagram: site count, clip box, checker report, timings, piece counts per kind; the pieces
+     as a GDSII file to draw (draw_layer=...) and/or as a list of Piece (with_pieces=True)
 A wrong diagram is never returned: the core's independent checker raises DiagramError.
 """
+import os
+import tempfile
 import time
-from collections import Counter, namedtuple
+import weakref
+from collections import namedtuple
 
 from . import core
 from .polygons import core_input
@@ -16,24 +20,55 @@ Piece = namedtuple("Piece", "kind x1 y1 x2 y2 d1 d2 a_x1 a_y1 a_x2 a_y2 b_x1 b_y
 
 
 class Diagram:
-    def __init__(self, raw, seconds_total, csv_path=None):
+    def __init__(self, raw, seconds_total, csv_path=None, gds_path=None):
         self.csv_path = csv_path  # where the core already wrote the pieces as CSV, if it did
-        self.pieces = [Piece(*p) for p in raw["pieces"]]
+        # The pieces as GDSII, for output.add_layers; a temporary file, removed with the Diagram.
+        self.gds_path = gds_path
+        if gds_path:
+            weakref.finalize(self, _remove, gds_path)
+        self.pieces = [Piece(*p) for p in raw["pieces"]] if isinstance(raw["pieces"], list) else None
+        self.n_pieces = raw["pieces"] if self.pieces is None else len(self.pieces)
+        self.drawn = raw.get("drawn")  # pieces per kind in the GDSII file
         self.sites = raw["sites"]
         self.clip = raw["clip"]
         self.check = raw["check"]
         self.tiles = raw["tiles"]
+        self._counts = raw["counts"]
         self.seconds = dict(raw["seconds"], total=seconds_total)
 
     def counts(self):
-        c = Counter(p.kind for p in self.pieces)
-        return {k: c.get(k, 0) for k in KINDS}
+        return {k: self._counts.get(k, 0) for k in KINDS}
 
 
-def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=1.0):
+def _remove(path):
+    try:
+        os.remove(path)
+    except OSError:
+        pass
+
+
+def drawing_file():
+    """A fresh temporary file name for the core's GDSII output."""
+    fd, path = tempfile.mkstemp(prefix="linf_opc-diagram-", suffix=".gds")
+    os.close(fd)
+    return path
+
+
+def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=1.0, with_pieces=True,
+            draw_layer=None):
     """tile: side of the builder's tiles in DBU; 0 one tile, -1 automatic. The diagram is the
     same for every tile size; tiles bound the memory the builder holds at once.
-    csv_path: the core also writes voronoi.csv there (micrometres, `dbu`)."""
+    csv_path: the core also writes voronoi.csv there (micrometres, `dbu`).
+    draw_layer: a layer number: the core also writes the pieces as GDSII for output.add_layers
+    (datatypes 200 + kind). with_pieces=False: no Python object per piece (a full layer has
+    tens of millions of them): Diagram.pieces is None, n_pieces and counts() remain."""
     t0 = time.perf_counter()
-    raw = core.voronoi_polygons(core_input(polygons), check, check_pairs, tile=tile, csv=csv_path or "", dbu=dbu)
-    return Diagram(raw, time.perf_counter() - t0, csv_path)
+    gds = drawing_file() if draw_layer is not None else None
+    try:
+        raw = core.voronoi_polygons(core_input(polygons), check, check_pairs, tile=tile, csv=csv_path or "", dbu=dbu,
+                                    pieces=with_pieces, gds=gds or "", gds_layer=draw_layer or 0)
+    except BaseException:
+        if gds:
+            _remove(gds)
+        raise
+    return Diagram(raw, time.perf_counter() - t0, csv_path, gds)

@@ -96,20 +96,27 @@ class Gauges:
         return r
 
 
-def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, with_diagram=False,
+def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, draw_layer=None,
             with_paths=False, tile=-1, csv_path=None, dbu=1.0):
-    """with_diagram: also keep the diagram's pieces (Gauges.pieces_diagram, a diagram.Diagram),
-    so that a flow writes both without building the diagram twice. with_paths: each gauge's
-    `stretch` is its stretch's path [(x, y)] (else None). tile, csv_path, dbu: as in
-    diagram.compute (the gauges are the same for every tile size)."""
+    """draw_layer: a layer number: also keep the diagram, drawable (Gauges.pieces_diagram, a
+    diagram.Diagram with its GDSII file, see diagram.compute), so that a flow writes both
+    without building the diagram twice. with_paths: each gauge's `stretch` is its stretch's
+    path [(x, y)] (else None). tile, csv_path, dbu: as in diagram.compute (the gauges are the
+    same for every tile size)."""
+    from .diagram import Diagram, drawing_file, _remove
     t0 = time.perf_counter()
-    raw = core.gauges_polygons(core_input(polygons), check, 2000, 0, tooth_fraction, space_limit_widths, with_diagram,
-                               with_paths, tile=tile, csv=csv_path or "", dbu=dbu)
+    gds = drawing_file() if draw_layer is not None else None
+    try:
+        raw = core.gauges_polygons(core_input(polygons), check, 2000, 0, tooth_fraction, space_limit_widths, False,
+                                   with_paths, tile=tile, csv=csv_path or "", dbu=dbu, gds=gds or "",
+                                   gds_layer=draw_layer or 0)
+    except BaseException:
+        if gds:
+            _remove(gds)
+        raise
     out = Gauges(raw, time.perf_counter() - t0)
-    if with_diagram:
-        from .diagram import Diagram
-        out.pieces_diagram = Diagram(raw["diagram"], out.seconds["total"], csv_path)
-        raw["diagram"]["pieces"] = len(raw["diagram"]["pieces"])
+    if gds:
+        out.pieces_diagram = Diagram(raw["diagram"], out.seconds["total"], csv_path, gds)
     return out
 
 

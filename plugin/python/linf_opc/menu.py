@@ -132,7 +132,7 @@ def voronoi_of_current_layer():
     def action(progress):
         mw, view, cv, info, polygons = _layer_polygons()
         progress.inc()
-        diagram = diagram_stage.compute(polygons)
+        diagram = diagram_stage.compute(polygons, dbu=cv.layout().dbu, with_pieces=False, draw_layer=info.layer)
         progress.inc()
         ly = cv.layout()
         _undoable(view, ly, "L\u221e Voronoi diagram of %s" % info.to_s(),
@@ -140,7 +140,7 @@ def voronoi_of_current_layer():
         progress.inc()
         c = diagram.counts()
         mw.message("L\u221e Voronoi: %d pieces (internal %d, external %d, notch %d, adjacent %d), checked, %.2f s"
-                   % (len(diagram.pieces), c["internal"], c["external"], c["notch"], c["adjacent"],
+                   % (diagram.n_pieces, c["internal"], c["external"], c["notch"], c["adjacent"],
                       diagram.seconds["total"]), 10000)
     _run("L\u221e Voronoi diagram", action)
 

@@ -23,6 +23,8 @@ def write_csv(diagram, path, dbu):
     ask the core to write it while it holds the diagram)."""
     if diagram.csv_path == path:
         return
+    if diagram.pieces is None:
+        raise ValueError("the diagram was computed without its pieces: pass csv_path to diagram.compute")
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(CSV_HEADER)
@@ -32,31 +34,32 @@ def write_csv(diagram, path, dbu):
 
 def add_layers(layout, cell, diagram, layer, datatype):
     """Draws every piece as a zero-width path on its kind's layer (cleared first, so the
-    action can be repeated). A piece shorter than the database grid rounds to a point and is
-    not drawn (the CSV keeps it). Returns {kind: number of pieces drawn}."""
-    out = {}
+    action can be repeated), from the GDSII file the core wrote (diagram.compute with
+    draw_layer=layer): KLayout reads it and copies its shapes in C++, several times faster than
+    inserting the pieces one by one from Python. A piece shorter than the database grid rounds
+    to a point and is not drawn (the CSV keeps it). Returns {kind: number of pieces drawn}."""
+    if not diagram.gds_path:
+        raise ValueError("the diagram was computed without draw_layer: nothing to draw")
+    drawn = pya.Layout()
+    drawn.read(diagram.gds_path)
+    source = drawn.top_cell()
     for kind in KINDS:
         info = diagram_layer_info(layer, datatype, kind)
         index = layout.find_layer(info)
         if index is None:
             index = layout.insert_layer(info)
         cell.shapes(index).clear()
-        out[kind] = index
-    drawn = dict.fromkeys(KINDS, 0)
-    for p in diagram.pieces:
-        a, b = pya.Point(round(p.x1), round(p.y1)), pya.Point(round(p.x2), round(p.y2))
-        if a == b:
-            continue
-        cell.shapes(out[p.kind]).insert(pya.Path([a, b], 0))
-        drawn[p.kind] += 1
-    return drawn
+        found = drawn.find_layer(layer, DATATYPE_BASE + KINDS.index(kind))
+        if found is not None:
+            cell.shapes(index).insert(source.shapes(found))
+    return {k: diagram.drawn[k] for k in KINDS}
 
 
 def summary(diagram, dbu, **extra):
     s = {
         "dbu": round(dbu, 12),
         "sites": diagram.sites,
-        "pieces": len(diagram.pieces),
+        "pieces": diagram.n_pieces,
         "counts": diagram.counts(),
         "check": {k: v for k, v in diagram.check.items() if k != "messages"},
         "seconds": diagram.seconds,

@@ -1,0 +1,65 @@
+# The core's writers (C++, used by the batch and the editor) against Python and KLayout, on
+# one layout:
+#   klayout -b -r tests/klayout/check_writers.py -rd input=FILE -rd layer=L/D -rd work=DIR
+# - voronoi.csv: the same bytes as the Python writer row by row;
+# - the GDSII drawing: read by KLayout and drawn by output.add_layers, each kind's layer holds
+#   exactly the pieces rounded to the grid by Python (ties to even), as zero-width paths, a
+#   piece rounding to one point left out; the temporary file goes with the Diagram.
+import filecmp
+import gc
+import os
+import sys
+from collections import Counter
+
+repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(repo, "build"))
+sys.path.insert(0, os.path.join(repo, "plugin", "python"))
+
+import pya  # noqa: E402
+
+from linf_opc import diagram, layout, output  # noqa: E402
+
+g = globals()
+os.makedirs(g["work"], exist_ok=True)
+ly = pya.Layout()
+ly.read(g["input"])
+L, D = layout.parse_layer(g["layer"])
+polygons = layout.polygons_of(layout.region_of(ly.top_cells()[0], ly.find_layer(L, D)))
+core_csv, py_csv = os.path.join(g["work"], "core.csv"), os.path.join(g["work"], "python.csv")
+d = diagram.compute(polygons, csv_path=core_csv, dbu=ly.dbu, draw_layer=L)
+d.csv_path = None  # make output.write_csv write its own
+output.write_csv(d, py_csv, ly.dbu)
+same = filecmp.cmp(core_csv, py_csv, shallow=False)
+rows = sum(1 for _ in open(core_csv)) - 1
+print("csv writer on %s: %d rows (%d pieces), core %.3f s, %s" % (os.path.basename(g["input"]), rows, len(d.pieces),
+                                                                   d.seconds["csv"], "identical" if same else "DIFFERENT"))
+ok = same and rows == len(d.pieces) and rows > 0
+
+res = pya.Layout()
+res.dbu = ly.dbu
+top = res.create_cell("TOP")
+drawn = output.add_layers(res, top, d, L, D)
+for i, kind in enumerate(diagram.KINDS):
+    want = Counter()
+    for p in d.pieces:
+        if p.kind != kind:
+            continue
+        a, b = (round(p.x1), round(p.y1)), (round(p.x2), round(p.y2))
+        if a != b:
+            want[(a, b)] += 1
+    got = Counter()
+    widths = set()
+    for s in top.shapes(res.find_layer(L, 200 + i)).each():
+        pts = [(q.x, q.y) for q in s.path.each_point()] if s.is_path() else []
+        widths.add(s.path.width if s.is_path() else None)
+        got[tuple(pts)] += 1
+    match = got == want and widths <= {0} and drawn[kind] == sum(want.values())
+    print("gds drawing, %s: %d paths, %d pieces of %d drawn by Python, %s"
+          % (kind, sum(got.values()), sum(want.values()), d.counts()[kind], "identical" if match else "DIFFERENT"))
+    ok = ok and match
+path = d.gds_path
+del d
+gc.collect()
+gone = not os.path.exists(path)
+print("temporary drawing file removed with the diagram: %s" % gone)
+sys.exit(0 if ok and gone else 1)
