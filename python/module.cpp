@@ -331,6 +331,27 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "as in voronoi_polygons.");
 
   m.def(
+      "write_gds",
+      [](const std::string& path, double dbu, int layer, int datatype, py::buffer lines,
+         const std::vector<std::string>& labels) {
+        const std::vector<double> v = doubles_of(lines, 6, "lines");
+        const std::size_t n = v.size() / 6;
+        if (!labels.empty() && labels.size() != n) throw py::value_error("one label per line, or none");
+        py::gil_scoped_release unlocked;
+        GdsWriter w(path, dbu, "LINES");
+        for (std::size_t i = 0; i < n; ++i) {
+          const double* p = &v[6 * i];
+          w.path(layer, datatype, p[0], p[1], p[2], p[3]);
+          if (!labels.empty()) w.text(layer, datatype, p[4], p[5], labels[i]);
+        }
+        w.close();
+      },
+      py::arg("path"), py::arg("dbu"), py::arg("layer"), py::arg("datatype"), py::arg("lines"), py::arg("labels"),
+      "Writes lines as GDSII for the editor to read in one call: lines array('d') of x1, y1, x2, y2, tx, ty per\n"
+      "line in DBU; each a zero-width path on layer/datatype, with its label (if labels is not empty) as a text at\n"
+      "(tx, ty). Coordinates rounded to the grid, ties to even; dbu: micrometres per DBU.");
+
+  m.def(
       "select_windows",
       [](py::buffer spots, py::buffer markers, const std::vector<double>& sides, const std::vector<std::string>& modes,
          bool brute) {

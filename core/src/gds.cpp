@@ -2,32 +2,30 @@
 
 #include <climits>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <memory>
+#include <initializer_list>
 #include <stdexcept>
-#include <vector>
 
 namespace linf {
-namespace {
 
 // GDSII records: a big-endian 16-bit length (header included), a record type, a data type.
-class Stream {
- public:
-  explicit Stream(const std::string& path) : f_(std::fopen(path.c_str(), "wb"), &std::fclose), path_(path) {
-    if (!f_) throw std::runtime_error("cannot write " + path);
-    buf_.reserve(1 << 20);
+struct GdsWriter::Stream {
+  std::unique_ptr<FILE, int (*)(FILE*)> f;
+  std::string path, buf;
+
+  explicit Stream(const std::string& p) : f(std::fopen(p.c_str(), "wb"), &std::fclose), path(p) {
+    if (!f) throw std::runtime_error("cannot write " + p);
+    buf.reserve(1 << 20);
   }
   void record(std::uint8_t type, std::uint8_t data, std::size_t bytes) {
-    const std::size_t n = 4 + bytes;
-    put16(std::uint16_t(n));
-    buf_.push_back(char(type));
-    buf_.push_back(char(data));
+    put16(std::uint16_t(4 + bytes));
+    buf.push_back(char(type));
+    buf.push_back(char(data));
   }
-  void put16(std::uint16_t v) { buf_.push_back(char(v >> 8)), buf_.push_back(char(v)); }
+  void put16(std::uint16_t v) { buf.push_back(char(v >> 8)), buf.push_back(char(v)); }
   void put32(std::int32_t v) {
     const auto u = std::uint32_t(v);
-    for (int s = 24; s >= 0; s -= 8) buf_.push_back(char(u >> s));
+    for (int s = 24; s >= 0; s -= 8) buf.push_back(char(u >> s));
   }
   // GDSII's 8-byte real: sign, excess-64 base-16 exponent, 56-bit mantissa in [1/16, 1).
   void put_real(double v) {
@@ -41,73 +39,95 @@ class Stream {
       const auto m = std::uint64_t(std::llround(std::ldexp(v, 56)));
       bits = (std::uint64_t(neg) << 63) | (std::uint64_t(e) << 56) | (m & ((std::uint64_t(1) << 56) - 1));
     }
-    for (int s = 56; s >= 0; s -= 8) buf_.push_back(char(bits >> s));
+    for (int s = 56; s >= 0; s -= 8) buf.push_back(char(bits >> s));
   }
-  void ints16(std::uint8_t type, std::initializer_list<std::int16_t> v) {
+  void ints16(std::uint8_t type, std::initializer_list<int> v) {
     record(type, 2, 2 * v.size());
-    for (auto x : v) put16(std::uint16_t(x));
+    for (int x : v) put16(std::uint16_t(x));
   }
-  void text(std::uint8_t type, const std::string& s) {
+  void string(std::uint8_t type, const std::string& s) {
     const std::size_t n = s.size() + (s.size() & 1);  // even length, NUL-padded
     record(type, 6, n);
-    buf_.append(s);
-    if (n != s.size()) buf_.push_back('\0');
+    buf.append(s);
+    if (n != s.size()) buf.push_back('\0');
+  }
+  void layer(std::uint8_t element, int layer, std::uint8_t type_record, int type) {
+    record(element, 0, 0);
+    ints16(0x0D, {layer});
+    ints16(type_record, {type});
+  }
+  void flush() {
+    std::fwrite(buf.data(), 1, buf.size(), f.get());
+    buf.clear();
   }
   void flush_if_full() {
-    if (buf_.size() > (1 << 20) - 64) flush();
+    if (buf.size() > (1 << 20) - 256) flush();
   }
-  void close() {
-    flush();
-    if (std::ferror(f_.get()) || std::fflush(f_.get()) != 0) throw std::runtime_error("error writing " + path_);
-  }
-
- private:
-  void flush() {
-    std::fwrite(buf_.data(), 1, buf_.size(), f_.get());
-    buf_.clear();
-  }
-  std::unique_ptr<FILE, int (*)(FILE*)> f_;
-  std::string path_;
-  std::string buf_;
 };
+
+namespace {
 
 std::int32_t grid(double v) {
   const double r = std::nearbyint(v);  // ties to even, as Python's round()
   if (!(r >= double(INT32_MIN) && r <= double(INT32_MAX)))
-    throw std::out_of_range("a diagram coordinate does not fit GDSII's 32 bits");
+    throw std::out_of_range("a coordinate does not fit GDSII's 32 bits");
   return std::int32_t(r);
 }
 
+constexpr std::initializer_list<int> kDate = {2026, 1, 1, 0, 0, 0, 2026, 1, 1, 0, 0, 0};
+
 }  // namespace
 
+GdsWriter::GdsWriter(const std::string& path, double dbu, const std::string& cell)
+    : s_(std::make_unique<Stream>(path)) {
+  s_->ints16(0x00, {600});  // HEADER: version
+  s_->ints16(0x01, kDate);  // BGNLIB
+  s_->string(0x02, "LINF_OPC");
+  s_->record(0x03, 5, 16);  // UNITS: user units (um) per DBU, metres per DBU
+  s_->put_real(dbu);
+  s_->put_real(dbu * 1e-6);
+  s_->ints16(0x05, kDate);  // BGNSTR
+  s_->string(0x06, cell);
+}
+
+GdsWriter::~GdsWriter() = default;
+
+void GdsWriter::path(int layer, int datatype, double x1, double y1, double x2, double y2) {
+  const std::int32_t v[4] = {grid(x1), grid(y1), grid(x2), grid(y2)};
+  s_->layer(0x09, layer, 0x0E, datatype);  // PATH, LAYER, DATATYPE (width and path type 0)
+  s_->record(0x10, 3, 16);                 // XY
+  for (std::int32_t c : v) s_->put32(c);
+  s_->record(0x11, 0, 0);  // ENDEL
+  s_->flush_if_full();
+}
+
+void GdsWriter::text(int layer, int datatype, double x, double y, const std::string& str) {
+  const std::int32_t px = grid(x), py = grid(y);
+  s_->layer(0x0C, layer, 0x16, datatype);  // TEXT, LAYER, TEXTTYPE
+  s_->record(0x10, 3, 8);                  // XY
+  s_->put32(px), s_->put32(py);
+  s_->string(0x19, str);   // STRING
+  s_->record(0x11, 0, 0);  // ENDEL
+  s_->flush_if_full();
+}
+
+void GdsWriter::close() {
+  s_->record(0x07, 0, 0);  // ENDSTR
+  s_->record(0x04, 0, 0);  // ENDLIB
+  s_->flush();
+  if (std::ferror(s_->f.get()) || std::fflush(s_->f.get()) != 0) throw std::runtime_error("error writing " + s_->path);
+}
+
 DrawCounts write_pieces_gds(const Diagram& d, const GdsLayers& L, const std::string& path) {
-  Stream s(path);
-  const std::initializer_list<std::int16_t> date = {2026, 1, 1, 0, 0, 0, 2026, 1, 1, 0, 0, 0};
-  s.ints16(0x00, {600});  // HEADER: version
-  s.ints16(0x01, date);   // BGNLIB
-  s.text(0x02, "LINF_OPC");
-  s.record(0x03, 5, 16);  // UNITS: user units (um) per DBU, metres per DBU
-  s.put_real(L.dbu);
-  s.put_real(L.dbu * 1e-6);
-  s.ints16(0x05, date);  // BGNSTR
-  s.text(0x06, L.cell);
+  GdsWriter w(path, L.dbu, "VORONOI");
   DrawCounts n{};
   for (const Piece& p : d.pieces) {
-    const std::int32_t x1 = grid(p.p.x), y1 = grid(p.p.y), x2 = grid(p.q.x), y2 = grid(p.q.y);
-    if (x1 == x2 && y1 == y2) continue;
+    if (grid(p.p.x) == grid(p.q.x) && grid(p.p.y) == grid(p.q.y)) continue;
     const auto k = std::size_t(p.kind);
-    s.record(0x09, 0, 0);  // PATH (width and path type default to 0)
-    s.ints16(0x0D, {std::int16_t(L.layer)});
-    s.ints16(0x0E, {std::int16_t(L.datatype[k])});
-    s.record(0x10, 3, 16);  // XY
-    s.put32(x1), s.put32(y1), s.put32(x2), s.put32(y2);
-    s.record(0x11, 0, 0);  // ENDEL
-    s.flush_if_full();
+    w.path(L.layer, L.datatype[k], p.p.x, p.p.y, p.q.x, p.q.y);
     ++n[k];
   }
-  s.record(0x07, 0, 0);  // ENDSTR
-  s.record(0x04, 0, 0);  // ENDLIB
-  s.close();
+  w.close();
   return n;
 }
 

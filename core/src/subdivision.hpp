@@ -595,7 +595,7 @@ class Builder {
       for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
         if (cuts[i + 1] - cuts[i] <= 1e-9) continue;
         const Vec2 a = at(cuts[i]), b = at(cuts[i + 1]);
-        const int u = owner_beyond({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, nrm, C);
+        const int u = owner_beyond({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, nrm, tied);
         if (u != owner) {
           if (owner >= 0) emit_piece(at(from), a, t, owner);
           from = cuts[i], owner = u;
@@ -641,7 +641,10 @@ class Builder {
 
   // The owner just beyond m in direction d: compare distance, its slope along d, then the
   // L1 tie-break with its slope, then rank.
-  int owner_beyond(const Vec2& m, const Vec2& d, const std::vector<int>& C) const {
+  // Only sites tied with the edge's own site along the whole edge can own beyond it: every
+  // other site is above it at an end, so it is not least at the edge's points.
+  template <class Sites>
+  int owner_beyond(const Vec2& m, const Vec2& d, const Sites& C) const {
     const double len = std::hypot(d.x, d.y);
     const Vec2 u{d.x / len, d.y / len};
     const double tl = tol(m);

@@ -4,7 +4,10 @@
 # - voronoi.csv: the same bytes as the Python writer row by row;
 # - the GDSII drawing: read by KLayout and drawn by output.add_layers, each kind's layer holds
 #   exactly the pieces rounded to the grid by Python (ties to even), as zero-width paths, a
-#   piece rounding to one point left out; the temporary file goes with the Diagram.
+#   piece rounding to one point left out; the temporary file goes with the Diagram;
+# - gauges.lyrdb: written directly, loaded and saved by KLayout, the same bytes as the report
+#   database filled through KLayout's API and saved;
+# - the gauge layer drawn through GDSII: each gauge's line rounded by Python and its label.
 import filecmp
 import gc
 import os
@@ -17,7 +20,7 @@ sys.path.insert(0, os.path.join(repo, "plugin", "python"))
 
 import pya  # noqa: E402
 
-from linf_opc import diagram, layout, output  # noqa: E402
+from linf_opc import diagram, gauge_output, gauges, layout, output  # noqa: E402
 
 g = globals()
 os.makedirs(g["work"], exist_ok=True)
@@ -57,6 +60,35 @@ for i, kind in enumerate(diagram.KINDS):
     print("gds drawing, %s: %d paths, %d pieces of %d drawn by Python, %s"
           % (kind, sum(got.values()), sum(want.values()), d.counts()[kind], "identical" if match else "DIFFERENT"))
     ok = ok and match
+
+gs = gauges.compute(polygons).gauges
+api, fast, resaved = (os.path.join(g["work"], n) for n in ("api.lyrdb", "fast.lyrdb", "resaved.lyrdb"))
+gauge_output.report(gs, ly.dbu, "TOP", g["input"]).save(api)
+gauge_output.write_report(gs, ly.dbu, "TOP", g["input"], fast)
+rdb = pya.ReportDatabase("check")
+rdb.load(fast)
+rdb.save(resaved)
+same = filecmp.cmp(api, resaved, shallow=False) and rdb.num_items() == len(gs)
+print("gauges.lyrdb, %d gauges: written directly and loaded %s the API's" % (len(gs), "is" if same else "DIFFERS FROM"))
+ok = ok and same
+index = gauge_output.add_layer(res, top, gs, L, D)
+want = Counter()
+for x in gs:
+    want[("path", (round(x.x1), round(x.y1)), (round(x.x2), round(x.y2)))] += 1
+    want[("text", gauge_output.label(x, ly.dbu), (round(x.cx), round(x.cy)))] += 1
+got = Counter()
+for sh in top.shapes(index).each():
+    if sh.is_path():
+        pts = [(q.x, q.y) for q in sh.path.each_point()]
+        got[("path", pts[0], pts[-1]) if sh.path.width == 0 and len(pts) == 2 else ("bad path", str(sh.path))] += 1
+    elif sh.is_text():
+        got[("text", sh.text.string, (sh.text.x, sh.text.y))] += 1
+    else:
+        got[("other", str(sh))] += 1
+same = got == want
+print("gauge layer: %d shapes for %d gauges, %s" % (sum(got.values()), len(gs), "identical" if same else "DIFFERENT"))
+ok = ok and same
+
 path = d.gds_path
 del d
 gc.collect()

@@ -1,28 +1,43 @@
-// The diagram as a GDSII stream: one cell, each piece a two-point path of width zero on its
-// kind's layer. The editor reads it into the layout in one C++ call; drawing the pieces one by
-// one through KLayout's Python API costs 11-14 us a piece, minutes on a full layer.
+// Results as a GDSII stream for the editor to read: KLayout reads a file and copies its shapes
+// in C++, where drawing them one by one through its Python API costs 11-14 us a shape
+// (minutes on a full layer). One cell; coordinates in DBU, rounded to the grid (ties to even,
+// as Python's round()).
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string>
 
 #include "linf/piece.hpp"
 
 namespace linf {
 
-struct GdsLayers {
-  int layer = 0;                                 // every kind on this layer number...
-  std::array<int, 4> datatype{200, 201, 202, 203};  // ...with these datatypes (PieceKind order)
-  double dbu = 0.001;                            // micrometres per DBU, as the layout's
-  std::string cell = "VORONOI";
+class GdsWriter {
+ public:
+  // Throws std::runtime_error if the file cannot be written. dbu: micrometres per DBU.
+  GdsWriter(const std::string& path, double dbu, const std::string& cell);
+  ~GdsWriter();
+  // A two-point path of width zero. Throws std::out_of_range beyond GDSII's 32 bits.
+  void path(int layer, int datatype, double x1, double y1, double x2, double y2);
+  void text(int layer, int datatype, double x, double y, const std::string& s);
+  void close();  // ends the cell and the library; throws on a write error
+
+ private:
+  struct Stream;
+  std::unique_ptr<Stream> s_;
 };
 
-// Pieces drawn per kind (PieceKind order). A piece whose ends round to the same DBU grid point
+struct GdsLayers {
+  int layer = 0;                                    // every kind on this layer number...
+  std::array<int, 4> datatype{200, 201, 202, 203};  // ...with these datatypes (PieceKind order)
+  double dbu = 0.001;
+};
+
+// Pieces drawn per kind (PieceKind order). A piece whose ends round to the same grid point
 // is not drawn: a path needs two distinct points.
 using DrawCounts = std::array<std::size_t, 4>;
 
-// Writes the file; throws std::runtime_error if it cannot, or std::out_of_range if a coordinate
-// does not fit GDSII's 32 bits.
 DrawCounts write_pieces_gds(const Diagram& d, const GdsLayers& layers, const std::string& path);
 
 }  // namespace linf

@@ -198,7 +198,7 @@ def voronoi_line(s, d):
 def write_gauges(inp, result, gauges, window=None):
     t0 = time.perf_counter()
     gauge_output.write_csv(gauges, inp.file("gauges.csv"), inp.dbu)
-    gauge_output.report(gauges, inp.dbu, inp.cell.name, inp.path).save(inp.file("gauges.lyrdb"))
+    gauge_output.write_report(gauges, inp.dbu, inp.cell.name, inp.path, inp.file("gauges.lyrdb"))
     res, top = inp.result_layout()
     gauge_output.add_layer(res, top, gauges, inp.layer, inp.datatype)
     res.write(inp.file("gauges.oas"))
@@ -450,12 +450,13 @@ def flow(inp, args, progress=None):
     step("writing the diagram and the gauges")
     sv = write_voronoi(inp, result.pieces_diagram)
     sg = write_gauges(inp, result, result.gauges)
+    rdb = new_rdb(inp, "linf_opc flow")
+    rdb.load(inp.file("gauges.lyrdb"))  # flow.lyrdb: the gauges' categories, then the selection's and the split's
+    rdb.generator = "linf_opc flow"
     step("pattern selection")
     sel = Selected(inp, args, result)
     step("split")
     split = split_of(args, sel)
-    rdb = new_rdb(inp, "linf_opc flow")
-    gauge_output.report(result.gauges, inp.dbu, inp.cell.name, inp.path, rdb)
     stats = write_selection(inp, sel, rdb)
     ss = write_split(inp, split, rdb)
     rdb.save(inp.file("flow.lyrdb"))

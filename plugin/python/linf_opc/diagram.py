@@ -5,13 +5,11 @@ out: Diagram: site count, clip box, checker report, timings, piece counts per ki
      as a GDSII file to draw (draw_layer=...) and/or as a list of Piece (with_pieces=True)
 A wrong diagram is never returned: the core's independent checker raises DiagramError.
 """
-import os
-import tempfile
 import time
 import weakref
 from collections import namedtuple
 
-from . import core
+from . import core, drawing
 from .polygons import core_input
 
 KINDS = ("internal", "external", "notch", "adjacent")
@@ -25,7 +23,7 @@ class Diagram:
         # The pieces as GDSII, for output.add_layers; a temporary file, removed with the Diagram.
         self.gds_path = gds_path
         if gds_path:
-            weakref.finalize(self, _remove, gds_path)
+            weakref.finalize(self, drawing.remove, gds_path)
         self.pieces = [Piece(*p) for p in raw["pieces"]] if isinstance(raw["pieces"], list) else None
         self.n_pieces = raw["pieces"] if self.pieces is None else len(self.pieces)
         self.drawn = raw.get("drawn")  # pieces per kind in the GDSII file
@@ -40,20 +38,6 @@ class Diagram:
         return {k: self._counts.get(k, 0) for k in KINDS}
 
 
-def _remove(path):
-    try:
-        os.remove(path)
-    except OSError:
-        pass
-
-
-def drawing_file():
-    """A fresh temporary file name for the core's GDSII output."""
-    fd, path = tempfile.mkstemp(prefix="linf_opc-diagram-", suffix=".gds")
-    os.close(fd)
-    return path
-
-
 def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=1.0, with_pieces=True,
             draw_layer=None):
     """tile: side of the builder's tiles in DBU; 0 one tile, -1 automatic. The diagram is the
@@ -63,12 +47,12 @@ def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=
     (datatypes 200 + kind). with_pieces=False: no Python object per piece (a full layer has
     tens of millions of them): Diagram.pieces is None, n_pieces and counts() remain."""
     t0 = time.perf_counter()
-    gds = drawing_file() if draw_layer is not None else None
+    gds = drawing.temporary() if draw_layer is not None else None
     try:
         raw = core.voronoi_polygons(core_input(polygons), check, check_pairs, tile=tile, csv=csv_path or "", dbu=dbu,
                                     pieces=with_pieces, gds=gds or "", gds_layer=draw_layer or 0)
     except BaseException:
         if gds:
-            _remove(gds)
+            drawing.remove(gds)
         raise
     return Diagram(raw, time.perf_counter() - t0, csv_path, gds)

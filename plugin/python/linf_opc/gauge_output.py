@@ -1,9 +1,13 @@
 """Writing gauges: gauges.csv (micrometres), a gauge layer, a report database for the marker browser."""
 import csv
+from array import array
+from xml.sax import saxutils
 
 import pya
 
-from .gauges import TYPES
+from . import core, drawing
+from .gauges import TYPES, GaugeTable
+from .output import copy_drawing
 
 CSV_HEADER = ["id", "type", "x1", "y1", "x2", "y2", "cx", "cy", "cd", "score", "norm_score", "tiebreak", "rank"]
 
@@ -24,7 +28,11 @@ def gauge_layer_info(layer, datatype):
 
 
 def label(g, dbu):
-    return "#%d %s %.4g" % (g.rank, g.type, g.cd * dbu)
+    return label_of(g.rank, g.type, g.cd, dbu)
+
+
+def label_of(rank, type_name, cd, dbu):
+    return "#%d %s %.4g" % (rank, type_name, cd * dbu)
 
 
 def write_csv(gauges, path, dbu):
@@ -38,17 +46,25 @@ def write_csv(gauges, path, dbu):
 
 def add_layer(layout, cell, gauges, layer, datatype):
     """Draws each measurement line (a zero-width path) and its rank text on the gauge layer,
-    cleared first so that the action can be repeated. Returns the layer index."""
+    cleared first so that the action can be repeated, through a GDSII file (output.copy_drawing).
+    Returns the layer index."""
     info = gauge_layer_info(layer, datatype)
     index = layout.find_layer(info)
     if index is None:
         index = layout.insert_layer(info)
-    shapes = cell.shapes(index)
-    shapes.clear()
-    for g in gauges:
-        a, b = pya.Point(round(g.x1), round(g.y1)), pya.Point(round(g.x2), round(g.y2))
-        shapes.insert(pya.Path([a, b], 0))
-        shapes.insert(pya.Text(label(g, layout.dbu), pya.Trans(pya.Point(round(g.cx), round(g.cy)))))
+    cell.shapes(index).clear()
+    if isinstance(gauges, GaugeTable):  # whole columns, no Python object per gauge
+        lines = gauges.lines()
+        labels = [label_of(r, t, cd, layout.dbu) for r, t, cd in gauges.label_fields()]
+    else:
+        lines = array("d", (v for g in gauges for v in (g.x1, g.y1, g.x2, g.y2, g.cx, g.cy)))
+        labels = [label(g, layout.dbu) for g in gauges]
+    path = drawing.temporary()
+    try:
+        core.write_gds(path, layout.dbu, layer, DATATYPE, lines, labels)
+        copy_drawing(cell, path, {(layer, DATATYPE): index})
+    finally:
+        drawing.remove(path)
     return index
 
 
@@ -76,6 +92,36 @@ def report(gauges, dbu, cell_name, source="", rdb=None):
             value.tag_id = tags[k]
             item.add_value(value)
     return rdb
+
+
+def write_report(gauges, dbu, cell_name, source, path):
+    """The report database of report(), written directly as KLayout's XML: filled item by
+    item through KLayout's API it costs ~50 us a gauge, minutes on a full layer. Loaded, it is
+    the database report() fills (saved, the same bytes). The tags are not declared: KLayout
+    loads declared tags as plain tags but "[#score]" values as user tags, which would give
+    every name twice."""
+    esc = saxutils.escape
+    with open(path, "w", encoding="utf-8") as f:
+        w = f.write
+        w('<?xml version="1.0" encoding="utf-8"?>\n<report-database>\n <description/>\n')
+        w(" <original-file>%s</original-file>\n" % esc(source) if source else " <original-file/>\n")
+        w(" <generator>linf_opc gauges</generator>\n <top-cell>%s</top-cell>\n <tags>\n </tags>\n"
+          " <categories>\n" % esc(cell_name))
+        for t in TYPES:
+            w("  <category>\n   <name>%s</name>\n   <description>%s</description>\n   <categories>\n"
+              "   </categories>\n  </category>\n" % (t, esc(DESCRIPTIONS[t])))
+        w(" </categories>\n <cells>\n  <cell>\n   <name>%s</name>\n   <variant/>\n   <references>\n"
+          "   </references>\n  </cell>\n </cells>\n <items>\n" % esc(cell_name))
+        head = ("  <item>\n   <tags/>\n   <category>%%s</category>\n   <cell>%s</cell>\n   <visited>false</visited>\n"
+                "   <multiplicity>1</multiplicity>\n   <image/>\n   <values>\n" % esc(cell_name).replace("%", "%%"))
+        item = (head + "    <value>edge: (%.12g,%.12g;%.12g,%.12g)</value>\n"
+                "    <value>[#score] float: %.12g</value>\n    <value>[#norm_score] float: %.12g</value>\n"
+                "    <value>[#cd] float: %.12g</value>\n    <value>[#tiebreak] float: %.12g</value>\n"
+                "    <value>[#rank] float: %.12g</value>\n   </values>\n  </item>\n")
+        for g in gauges:
+            w(item % (g.type, g.x1 * dbu, g.y1 * dbu, g.x2 * dbu, g.y2 * dbu, g.score * dbu, g.norm_score,
+                      g.cd * dbu, g.tiebreak * dbu, float(g.rank)))
+        w(" </items>\n</report-database>\n")
 
 
 def summary(result, dbu):

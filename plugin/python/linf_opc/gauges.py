@@ -11,7 +11,7 @@ from collections import namedtuple
 from collections.abc import Sequence
 from itertools import compress
 
-from . import core
+from . import core, drawing
 from .polygons import core_input
 
 TYPES = ("internal", "external", "sandwich", "comb", "T")
@@ -61,6 +61,18 @@ class GaugeTable(Sequence):
         m[3::4] = self._reals[8::10]
         return out
 
+    def lines(self):
+        """array('d'): x1, y1, x2, y2, cx, cy per gauge (the measurement line, the gauge point)."""
+        out = array("d", bytes(48 * self._n))
+        m = memoryview(out)
+        for k in range(6):
+            m[k::6] = self._reals[k::10]
+        return out
+
+    def label_fields(self):
+        """(rank, type, cd) per gauge, rank order."""
+        return zip(self._ints[0::13], (TYPES[k] for k in self._ints[12::13]), self._reals[6::10])
+
     def cd_extension(self, type_name):
         """array('d'): cd, tiebreak pairs of the gauges of one type, rank order."""
         k = TYPES.index(type_name)
@@ -103,16 +115,16 @@ def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, d
     without building the diagram twice. with_paths: each gauge's `stretch` is its stretch's
     path [(x, y)] (else None). tile, csv_path, dbu: as in diagram.compute (the gauges are the
     same for every tile size)."""
-    from .diagram import Diagram, drawing_file, _remove
+    from .diagram import Diagram
     t0 = time.perf_counter()
-    gds = drawing_file() if draw_layer is not None else None
+    gds = drawing.temporary() if draw_layer is not None else None
     try:
         raw = core.gauges_polygons(core_input(polygons), check, 2000, 0, tooth_fraction, space_limit_widths, False,
                                    with_paths, tile=tile, csv=csv_path or "", dbu=dbu, gds=gds or "",
                                    gds_layer=draw_layer or 0)
     except BaseException:
         if gds:
-            _remove(gds)
+            drawing.remove(gds)
         raise
     out = Gauges(raw, time.perf_counter() - t0)
     if gds:

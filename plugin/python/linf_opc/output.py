@@ -32,26 +32,36 @@ def write_csv(diagram, path, dbu):
             w.writerow([p.kind] + ["%.6f" % (v * dbu) for v in p[1:15]])
 
 
+def copy_drawing(cell, path, targets):
+    """Reads a GDSII file the core wrote (see drawing.py) and inserts its shapes on
+    layer/datatype (l, d) into `cell`'s layer targets[(l, d)] (an index of cell's layout)."""
+    drawn = pya.Layout()
+    drawn.read(path)
+    if not drawn.top_cells():
+        return
+    source = drawn.top_cell()
+    for (layer, datatype), index in targets.items():
+        found = drawn.find_layer(layer, datatype)
+        if found is not None:
+            cell.shapes(index).insert(source.shapes(found))
+
+
 def add_layers(layout, cell, diagram, layer, datatype):
     """Draws every piece as a zero-width path on its kind's layer (cleared first, so the
     action can be repeated), from the GDSII file the core wrote (diagram.compute with
-    draw_layer=layer): KLayout reads it and copies its shapes in C++, several times faster than
-    inserting the pieces one by one from Python. A piece shorter than the database grid rounds
+    draw_layer=layer). A piece shorter than the database grid rounds
     to a point and is not drawn (the CSV keeps it). Returns {kind: number of pieces drawn}."""
     if not diagram.gds_path:
         raise ValueError("the diagram was computed without draw_layer: nothing to draw")
-    drawn = pya.Layout()
-    drawn.read(diagram.gds_path)
-    source = drawn.top_cell()
+    targets = {}
     for kind in KINDS:
         info = diagram_layer_info(layer, datatype, kind)
         index = layout.find_layer(info)
         if index is None:
             index = layout.insert_layer(info)
         cell.shapes(index).clear()
-        found = drawn.find_layer(layer, DATATYPE_BASE + KINDS.index(kind))
-        if found is not None:
-            cell.shapes(index).insert(source.shapes(found))
+        targets[(layer, DATATYPE_BASE + KINDS.index(kind))] = index
+    copy_drawing(cell, diagram.gds_path, targets)
     return {k: diagram.drawn[k] for k in KINDS}
 
 
