@@ -34,13 +34,25 @@ def write_library(path, which, patterns, region, layer, datatype, dbu):
     lg = lib.layer(pya.LayerInfo(layer, GAUGE_DATATYPE, "gauges"))
     lw = lib.layer(pya.LayerInfo(layer, WINDOW_DATATYPE, "windows"))
     lm = lib.layer(pya.LayerInfo(layer, MARKER_DATATYPE, "markers"))
+    # The layer's shapes in a cell of their own, for box queries: `region & box` scans the whole
+    # layer, minutes for the patterns of a large one; the shapes that overlap the window give the
+    # same clip.
+    source = pya.Layout()
+    source.dbu = dbu
+    shapes_cell = source.create_cell("SOURCE")
+    ls = source.layer()
+    shapes_cell.shapes(ls).insert(region)
     names = []
+    # Inserting a Region updates the whole layout unless it is marked under construction:
+    # without this every clip costs time in proportion to the clips before it.
+    lib.start_changes()
     for p in patterns:
         g = p.gauge
         cell = lib.create_cell(cell_name(which, g, dbu))
         names.append(cell.name)
         box = window_box(p.box)
-        cell.shapes(li).insert(region & pya.Region(box))
+        near = pya.Region(shapes_cell.begin_shapes_rec_overlapping(ls, box))
+        cell.shapes(li).insert(near & pya.Region(box))
         cell.shapes(lw).insert(box)
         a, b = pya.Point(round(g.x1), round(g.y1)), pya.Point(round(g.x2), round(g.y2))
         cell.shapes(lg).insert(pya.Path([a, b], 0))
@@ -49,5 +61,6 @@ def write_library(path, which, patterns, region, layer, datatype, dbu):
                                         pya.Trans(pya.Point(round(g.cx), round(g.cy)))))
         for m in p.markers:
             cell.shapes(lm).insert(pya.DBox(m[0] * dbu, m[1] * dbu, m[2] * dbu, m[3] * dbu))
+    lib.end_changes()
     lib.write(path)
     return names
