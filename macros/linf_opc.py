@@ -14,5 +14,5 @@ from linf_opc import batch  # noqa: E402
 
 _args = {k: globals().get(k) for k in ("cmd", "input", "layer", "cell", "out", "window", "markers", "sizes", "modes",
                                      "mode", "size", "pitch", "halves", "max_norm", "split", "fraction", "seed",
-                                     "threshold", "bin", "box", "tile")}
+                                     "threshold", "bin", "box", "tile", "rdb_max")}
 sys.exit(batch.main(_args))

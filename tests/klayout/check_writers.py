@@ -7,6 +7,7 @@
 #   piece rounding to one point left out; the temporary file goes with the Diagram;
 # - gauges.lyrdb: written directly, loaded and saved by KLayout, the same bytes as the report
 #   database filled through KLayout's API and saved;
+#   capped at N gauges a type, it holds the N most critical of each;
 # - the gauge layer drawn through GDSII: each gauge's line rounded by Python and its label.
 import filecmp
 import gc
@@ -71,6 +72,27 @@ rdb.save(resaved)
 same = filecmp.cmp(api, resaved, shallow=False) and rdb.num_items() == len(gs)
 print("gauges.lyrdb, %d gauges: written directly and loaded %s the API's" % (len(gs), "is" if same else "DIFFERS FROM"))
 ok = ok and same
+# The report's cap: the most critical `cap` gauges of each type, from the columns and from a
+# plain list alike, and exactly those in the file.
+cap = max(1, len(gs) // 20)
+capped = os.path.join(g["work"], "capped.lyrdb")
+n = gauge_output.write_report(gs, ly.dbu, "TOP", g["input"], capped, max_per_type=cap)
+want_ranks = {}
+for x in gs:
+    want_ranks.setdefault(x.type, [])
+    if len(want_ranks[x.type]) < cap:
+        want_ranks[x.type].append(x.rank)
+rdb = pya.ReportDatabase("capped")
+rdb.load(capped)
+got_ranks = {}
+for item in rdb.each_item():
+    rank = [v.float() for v in item.each_value() if v.tag_id == rdb.user_tag_id("rank")][0]
+    got_ranks.setdefault(rdb.category_by_id(item.category_id()).name(), []).append(int(rank))
+same = (got_ranks == want_ranks and n == sum(map(len, want_ranks.values())) and
+        [x.rank for x in gauge_output.most_critical(list(gs), cap)] == [x.rank for x in gauge_output.most_critical(gs, cap)])
+print("gauges.lyrdb capped at %d a type: %d items, %s" % (cap, n, "the most critical" if same else "WRONG"))
+ok = ok and same
+
 index = gauge_output.add_layer(res, top, gs, L, D)
 want = Counter()
 for x in gs:

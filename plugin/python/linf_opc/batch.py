@@ -3,7 +3,8 @@
   klayout -b -r macros/linf_opc.py -rd cmd=COMMAND -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd out=DIR
            [-rd tile=UM|0|auto]  (the diagram builder's tiles; every output is the same for any size)
   voronoi  the diagram: voronoi.csv, voronoi.oas, summary.json
-  gauges   [-rd window=X1,Y1,X2,Y2] (um: the per-pattern mode): gauges.csv, gauges.lyrdb, gauges.oas, summary.json
+  gauges   [-rd window=X1,Y1,X2,Y2] (um: the per-pattern mode) [-rd rdb_max=100000] (gauges.lyrdb holds the
+           most critical rdb_max of each type, 0 all): gauges.csv, gauges.lyrdb, gauges.oas, summary.json
   select   -rd markers=SPEC [-rd sizes=5,6,7,8] [-rd modes=A,B,C] [-rd mode=A] [-rd size=K] [-rd pitch=UM]
            [-rd max_norm=1] [-rd halves=0|1]: windows.csv, windows.lyrdb, windows.oas, stats.json, report.html
   split    the select arguments and [-rd split=stratified|threshold] [-rd fraction=0.3] [-rd seed=1]
@@ -195,16 +196,31 @@ def voronoi_line(s, d):
                                                os.path.abspath(d)))
 
 
-def write_gauges(inp, result, gauges, window=None):
+def report_max(args):
+    """-rd rdb_max=N: the report database's gauges per type, the most critical (0: all)."""
+    text = args.get("rdb_max")
+    if text in (None, ""):
+        return gauge_output.REPORT_MAX_PER_TYPE
+    try:
+        n = int(text)
+    except ValueError:
+        n = -1
+    if n < 0:
+        raise UsageError("rdb_max must be a count of gauges per type (0: all), not %r" % text)
+    return n
+
+
+def write_gauges(inp, result, gauges, args, window=None):
     t0 = time.perf_counter()
     gauge_output.write_csv(gauges, inp.file("gauges.csv"), inp.dbu)
-    gauge_output.write_report(gauges, inp.dbu, inp.cell.name, inp.path, inp.file("gauges.lyrdb"))
+    cap = report_max(args)
+    in_report = gauge_output.write_report(gauges, inp.dbu, inp.cell.name, inp.path, inp.file("gauges.lyrdb"), cap)
     res, top = inp.result_layout()
     gauge_output.add_layer(res, top, gauges, inp.layer, inp.datatype)
     res.write(inp.file("gauges.oas"))
     s = gauge_output.summary(result, inp.dbu)
     s.update(input=inp.path, cell=inp.cell.name, layer=inp.name, polygons=len(inp.polygons),
-             dbu=round(inp.dbu, 12), written=len(gauges))
+             dbu=round(inp.dbu, 12), written=len(gauges), report_items=in_report, report_max_per_type=cap)
     if window is not None:
         s["window_um"] = [round(v * inp.dbu, 9) for v in window]
     s["seconds"].update(read=inp.t_read, write=time.perf_counter() - t0)
@@ -234,7 +250,7 @@ def cmd_gauges(args):
     window = parse_window(args["window"], inp.dbu) if args.get("window") else None
     result = gauge_stage.compute(inp.polygons, tile=inp.tile)
     gauges = result.gauges if window is None else gauge_stage.most_critical_in(result.gauges, window)
-    s = write_gauges(inp, result, gauges, window)
+    s = write_gauges(inp, result, gauges, args, window)
     output.write_json(s, inp.file("summary.json"))
     return gauges_line(s, gauges, inp.dbu, inp.dir)
 
@@ -449,7 +465,7 @@ def flow(inp, args, progress=None):
                                  dbu=inp.dbu)
     step("writing the diagram and the gauges")
     sv = write_voronoi(inp, result.pieces_diagram)
-    sg = write_gauges(inp, result, result.gauges)
+    sg = write_gauges(inp, result, result.gauges, args)
     rdb = new_rdb(inp, "linf_opc flow")
     rdb.load(inp.file("gauges.lyrdb"))  # flow.lyrdb: the gauges' categories, then the selection's and the split's
     rdb.generator = "linf_opc flow"

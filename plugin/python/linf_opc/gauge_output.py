@@ -68,10 +68,37 @@ def add_layer(layout, cell, gauges, layer, datatype):
     return index
 
 
-def report(gauges, dbu, cell_name, source="", rdb=None):
+# A marker browser is for reading: as a DRC deck's maximum results per check, the report
+# database holds the most critical gauges of each type, gauges.csv and the gauge layer all.
+REPORT_MAX_PER_TYPE = 100000
+
+
+def most_critical(gauges, max_per_type):
+    """The first max_per_type gauges of each type, in rank order (all if max_per_type is 0)."""
+    if not max_per_type:
+        return gauges
+    if isinstance(gauges, GaugeTable):
+        picked, seen = [], [0] * len(TYPES)
+        for i, k in enumerate(gauges.type_indices()):
+            if seen[k] < max_per_type:
+                seen[k] += 1
+                picked.append(i)
+        return [gauges[i] for i in picked] if len(picked) < len(gauges) else gauges
+    seen = dict.fromkeys(TYPES, 0)
+    out = []
+    for g in gauges:
+        if seen[g.type] < max_per_type:
+            seen[g.type] += 1
+            out.append(g)
+    return out
+
+
+def report(gauges, dbu, cell_name, source="", rdb=None, max_per_type=REPORT_MAX_PER_TYPE):
     """Fills a report database (a new one unless given, e.g. the view's own) with one
-    category per gauge type; each item holds the measurement line in micrometres and the
-    named values score, norm_score, cd, tiebreak and rank."""
+    category per gauge type holding its max_per_type most critical gauges (0: all); each item
+    holds the measurement line in micrometres and the named values score, norm_score, cd,
+    tiebreak and rank."""
+    gauges = most_critical(gauges, max_per_type)
     if rdb is None:
         rdb = pya.ReportDatabase("gauges")
     rdb.generator = "linf_opc gauges"
@@ -94,12 +121,13 @@ def report(gauges, dbu, cell_name, source="", rdb=None):
     return rdb
 
 
-def write_report(gauges, dbu, cell_name, source, path):
+def write_report(gauges, dbu, cell_name, source, path, max_per_type=REPORT_MAX_PER_TYPE):
     """The report database of report(), written directly as KLayout's XML: filled item by
     item through KLayout's API it costs ~50 us a gauge, minutes on a full layer. Loaded, it is
     the database report() fills (saved, the same bytes). The tags are not declared: KLayout
     loads declared tags as plain tags but "[#score]" values as user tags, which would give
-    every name twice."""
+    every name twice. Returns the number of items written."""
+    gauges = most_critical(gauges, max_per_type)
     esc = saxutils.escape
     with open(path, "w", encoding="utf-8") as f:
         w = f.write
@@ -122,6 +150,7 @@ def write_report(gauges, dbu, cell_name, source, path):
             w(item % (g.type, g.x1 * dbu, g.y1 * dbu, g.x2 * dbu, g.y2 * dbu, g.score * dbu, g.norm_score,
                       g.cd * dbu, g.tiebreak * dbu, float(g.rank)))
         w(" </items>\n</report-database>\n")
+    return len(gauges)
 
 
 def summary(result, dbu):

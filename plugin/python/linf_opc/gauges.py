@@ -69,6 +69,10 @@ class GaugeTable(Sequence):
             m[k::6] = self._reals[k::10]
         return out
 
+    def type_indices(self):
+        """The type of each gauge as its index in TYPES, rank order."""
+        return self._ints[12::13]
+
     def label_fields(self):
         """(rank, type, cd) per gauge, rank order."""
         return zip(self._ints[0::13], (TYPES[k] for k in self._ints[12::13]), self._reals[6::10])
@@ -94,17 +98,18 @@ class Gauges:
         self.seconds = dict(self.diagram["seconds"], total=seconds_total)
 
     def counts(self):
-        c = dict.fromkeys(TYPES, 0)
-        for g in self.gauges:
-            c[g.type] += 1
-        return c
+        types = array("i", self.gauges.type_indices())
+        return {t: types.count(k) for k, t in enumerate(TYPES)}
 
     def score_ranges(self):
         """{type: (lowest score, highest score)} in DBU, types that have gauges only."""
+        types = array("i", self.gauges.type_indices())
+        scores = self.gauges._reals[7::10]
         r = {}
-        for g in self.gauges:
-            lo, hi = r.get(g.type, (g.score, g.score))
-            r[g.type] = (min(lo, g.score), max(hi, g.score))
+        for k, t in enumerate(TYPES):
+            of_type = list(compress(scores, (c == k for c in types)))
+            if of_type:
+                r[t] = (min(of_type), max(of_type))
         return r
 
 

@@ -160,10 +160,12 @@ def gauges_of_current_layer():
         progress.inc()
         c = result.counts()
         best = result.gauges[0] if result.gauges else None
-        mw.message("Gauges: %d (internal %d, external %d, sandwich %d, comb %d, T %d)%s, %.2f s"
+        cap = gauge_output.REPORT_MAX_PER_TYPE
+        mw.message("Gauges: %d (internal %d, external %d, sandwich %d, comb %d, T %d)%s%s, %.2f s"
                    % (len(result.gauges), c["internal"], c["external"], c["sandwich"], c["comb"], c["T"],
                       "; most critical: %s %.4g um" % (best.type, best.cd * ly.dbu) if best else "",
-                      result.seconds["total"]), 10000)
+                      "; the marker browser holds the %d most critical of each type" % cap
+                      if max(c.values()) > cap else "", result.seconds["total"]), 10000)
     _run("Gauges", action)
 
 
