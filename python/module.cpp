@@ -414,6 +414,28 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "'traversed', 'covered', 'seconds'}]. brute=True: the brute-force oracle.");
 
   m.def(
+      "free_windows",
+      [](py::buffer taken, py::buffer points, double side) {
+        const std::vector<double> t = doubles_of(taken, 4, "taken"), p = doubles_of(points, 2, "points");
+        std::vector<Box> tb;
+        tb.reserve(t.size() / 4);
+        for (std::size_t i = 0; i < t.size(); i += 4) tb.push_back({t[i], t[i + 1], t[i + 2], t[i + 3]});
+        std::vector<Vec2> pv;
+        pv.reserve(p.size() / 2);
+        for (std::size_t i = 0; i < p.size(); i += 2) pv.push_back({p[i], p[i + 1]});
+        std::vector<std::int32_t> kept;
+        {
+          py::gil_scoped_release unlocked;
+          kept = free_windows(tb, pv, side);
+        }
+        return bytes_of(kept);
+      },
+      py::arg("taken"), py::arg("points"), py::arg("side"),
+      "The split's extra patterns: taken array('d') x1, y1, x2, y2 per window, points array('d') x, y; in order,\n"
+      "each point whose window (side, centred) overlaps no window before it (open boxes). Returns bytes of int32:\n"
+      "the kept points' indices.");
+
+  m.def(
       "cover_points",
       [](const std::vector<std::pair<double, double>>& points, double side) {
         std::vector<Vec2> p;

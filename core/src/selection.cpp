@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
@@ -113,6 +114,35 @@ Selection select_windows_brute(const std::vector<Spot>& ranked, const std::vecto
     for (std::size_t i = 0; i < markers.size(); ++i)
       if (covers(w, markers[i], mode)) out.push_back(std::int32_t(i));
   });
+}
+
+std::vector<std::int32_t> free_windows(const std::vector<Box>& taken, const std::vector<Vec2>& points, double side) {
+  // Windows by the grid cell (of the window side) of their lower-left corner: a window that
+  // overlaps the square at b has its corner within one cell of b's.
+  std::unordered_map<std::int64_t, std::vector<Box>> grid;
+  auto cell = [&](double v) { return std::int64_t(std::floor(v / side)); };
+  auto key = [](std::int64_t i, std::int64_t j) { return (i << 32) ^ (j & 0xffffffff); };
+  auto overlap = [](const Box& a, const Box& b) { return a.x1 < b.x2 && b.x1 < a.x2 && a.y1 < b.y2 && b.y1 < a.y2; };
+  auto add = [&](const Box& b) { grid[key(cell(b.x1), cell(b.y1))].push_back(b); };
+  for (const Box& b : taken) add(b);
+  std::vector<std::int32_t> kept;
+  const double h = 0.5 * side;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Box b{points[k].x - h, points[k].y - h, points[k].x + h, points[k].y + h};
+    bool free = true;
+    for (std::int64_t i = cell(b.x1) - 1; free && i <= cell(b.x2) + 1; ++i)
+      for (std::int64_t j = cell(b.y1) - 1; free && j <= cell(b.y2) + 1; ++j) {
+        const auto it = grid.find(key(i, j));
+        if (it == grid.end()) continue;
+        for (const Box& o : it->second)
+          if (overlap(b, o)) { free = false; break; }
+      }
+    if (free) {
+      add(b);
+      kept.push_back(std::int32_t(k));
+    }
+  }
+  return kept;
 }
 
 std::vector<Box> cover_points(std::vector<Vec2> points, double side) {

@@ -1,6 +1,7 @@
 // Pattern selection: the R-tree path against brute force, the coverage modes, the heuristic.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "linf/selection.hpp"
@@ -85,4 +86,38 @@ TEST(Selection, PitchOfAGrating) {
   std::vector<std::pair<double, double>> spaces{{60, 1000}, {60, 1000}, {3000, 50000}, {3000, 50000}};
   EXPECT_DOUBLE_EQ(estimate_pitch(widths, spaces), 100);
   EXPECT_DOUBLE_EQ(estimate_pitch({}, spaces), 0);
+}
+
+// The split's extra windows against the plain rule: in order, a point's window is kept when it
+// overlaps (open boxes) none of the taken windows and none kept before it. Points on a coarse
+// grid, so that windows often touch exactly, and negative coordinates for the grid's floor.
+TEST(Selection, FreeWindowsAgreeWithBruteForce) {
+  std::mt19937_64 rng(11);
+  auto u = [&](int lo, int hi) { return double(std::uniform_int_distribution<int>(lo, hi)(rng)); };
+  auto overlap = [](const Box& a, const Box& b) { return a.x1 < b.x2 && b.x1 < a.x2 && a.y1 < b.y2 && b.y1 < a.y2; };
+  std::size_t kept_total = 0, dropped_total = 0;
+  for (int round = 0; round < 300; ++round) {
+    const double side = u(1, 4) * 10;
+    std::vector<Box> taken;
+    for (int i = 0, m = int(u(0, 10)); i < m; ++i) {
+      const double x = u(-20, 20) * 5, y = u(-20, 20) * 5;
+      taken.push_back({x, y, x + side, y + side});
+    }
+    std::vector<Vec2> points;
+    for (int i = 0, n = int(u(1, 80)); i < n; ++i) points.push_back({u(-20, 20) * 5, u(-20, 20) * 5});
+    std::vector<Box> all = taken;
+    std::vector<std::int32_t> want;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const Box b{points[k].x - side / 2, points[k].y - side / 2, points[k].x + side / 2, points[k].y + side / 2};
+      if (std::none_of(all.begin(), all.end(), [&](const Box& o) { return overlap(b, o); })) {
+        all.push_back(b);
+        want.push_back(std::int32_t(k));
+      }
+    }
+    ASSERT_EQ(free_windows(taken, points, side), want) << "round " << round;
+    kept_total += want.size();
+    dropped_total += points.size() - want.size();
+  }
+  EXPECT_GT(kept_total, 1000u);
+  EXPECT_GT(dropped_total, 1000u);
 }

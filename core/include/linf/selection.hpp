@@ -68,6 +68,13 @@ bool covers(const Box& window, const Box& marker, Cover mode);
 // at (bx - 1, by - 1), drop every point inside it (closed). Returns the windows in order.
 std::vector<Box> cover_points(std::vector<Vec2> points, double side);
 
+// The split's extra patterns (thesis 5.4: calibration needs material beyond the windows that
+// cover markers): in order, each point whose window (the square of the given side centred on
+// it) overlaps no window before it, `taken` first and then those kept here. Overlap is of open
+// boxes: windows that only touch do not overlap. `taken` windows are no wider than `side`.
+// Returns the indices of the kept points.
+std::vector<std::int32_t> free_windows(const std::vector<Box>& taken, const std::vector<Vec2>& points, double side);
+
 // The layer's pitch when none is given: the typical width plus the typical space, each the
 // median of gauge CDs weighted by their extension; spaces wider than ten typical widths are
 // the far field around the layout's outer shapes, not pattern, and are left out. Pairs are

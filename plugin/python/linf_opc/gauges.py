@@ -69,6 +69,10 @@ class GaugeTable(Sequence):
             m[k::6] = self._reals[k::10]
         return out
 
+    def centres(self):
+        """(cx, cy): the gauge points' coordinates, two sequences indexed by gauge."""
+        return self._reals[4::10], self._reals[5::10]
+
     def type_indices(self):
         """The type of each gauge as its index in TYPES, rank order."""
         return self._ints[12::13]

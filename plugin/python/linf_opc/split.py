@@ -11,34 +11,19 @@ no marker) that overlap no other pattern, taken in rank order. The rules of the 
 in the README ("Calibration and verification").
 """
 import random
+from array import array
 from collections import namedtuple
+
+from . import core
 
 SETS = ("calibration", "verification")
 
 Pattern = namedtuple("Pattern", "box gauge markers covers_marker")  # box in DBU, gauge a Gauge
 
 
-def _overlap(a, b):
-    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
-
-
 def patterns_of(run, gauges, markers):
     """The selection's windows, then the failed gauges' windows that overlap no pattern."""
-    out = []
-    grid = {}
     side = run.side
-
-    def cells(b):
-        return [(i, j) for i in range(int(b[0] // side) - 1, int(b[2] // side) + 2)
-                for j in range(int(b[1] // side) - 1, int(b[3] // side) + 2)]
-
-    def free(b):
-        return not any(_overlap(b, o) for c in cells(b) for o in grid.get(c, ()))
-
-    def add(b, g, inside, covers):
-        out.append(Pattern(b, g, inside, covers))
-        grid.setdefault((int(b[0] // side), int(b[1] // side)), []).append(b)
-
     buckets = {}  # markers by grid cell of the window side, for "the markers inside"
     for m in markers:
         for i in range(int(m[0] // side), int(m[2] // side) + 1):
@@ -46,18 +31,27 @@ def patterns_of(run, gauges, markers):
                 buckets.setdefault((i, j), []).append(m)
 
     def markers_in(b):
-        found = set(m for c in cells(b) for m in buckets.get(c, ()))
+        found = set(m for i in range(int(b[0] // side) - 1, int(b[2] // side) + 2)
+                    for j in range(int(b[1] // side) - 1, int(b[3] // side) + 2) for m in buckets.get((i, j), ()))
         return sorted(m for m in found if m[0] <= b[2] and m[2] >= b[0] and m[1] <= b[3] and m[3] >= b[1])
 
-    for x1, y1, x2, y2, gi, ms in run.windows:
-        b = (x1, y1, x2, y2)
-        add(b, gauges[gi], markers_in(b), True)
-    for gi in run.failed_spots:
-        g = gauges[gi]
-        h = 0.5 * side
-        b = (g.cx - h, g.cy - h, g.cx + h, g.cy + h)
-        if free(b):
-            add(b, g, [], False)
+    out = [Pattern((x1, y1, x2, y2), gauges[gi], markers_in((x1, y1, x2, y2)), True)
+           for x1, y1, x2, y2, gi, ms in run.windows]
+    # Millions of failed spots on a large layer: their centres as one array, the overlap test in the core.
+    failed = run.failed_spots
+    if hasattr(gauges, "centres"):
+        cx, cy = gauges.centres()
+        points = array("d", bytes(16 * len(failed)))
+        m = memoryview(points)
+        m[0::2] = array("d", (cx[gi] for gi in failed))
+        m[1::2] = array("d", (cy[gi] for gi in failed))
+    else:
+        points = array("d", (v for gi in failed for v in (gauges[gi].cx, gauges[gi].cy)))
+    taken = array("d", (v for w in run.windows for v in w[:4]))
+    h = 0.5 * side
+    for k in memoryview(core.free_windows(taken, points, side)).cast("i"):
+        g = gauges[failed[k]]
+        out.append(Pattern((g.cx - h, g.cy - h, g.cx + h, g.cy + h), g, [], False))
     return out
 
 
