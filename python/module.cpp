@@ -282,7 +282,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "gauges_polygons",
       [](const py::object& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
          bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu, const std::string& gds,
-         int gds_layer) {
+         int gds_layer, const std::string& gauges_csv) {
         std::vector<Polygon> in = polygons_of(polys);
         Files files{csv, gds, gds_layer, dbu};
         Result r;
@@ -307,6 +307,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
           o.space_limit_widths = space_limit;
           g = gauges_of(r.diagram.sites, std::move(st), o);
           seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          if (!gauges_csv.empty()) write_gauges_csv(g.gauges, dbu, gauges_csv);
         }
         d["seconds"].cast<py::dict>()["gauges"] = seconds;
         py::dict res;
@@ -320,6 +321,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false, py::arg("paths") = false,
       py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("gds") = "", py::arg("gds_layer") = 0,
+      py::arg("gauges_csv") = "",
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
       "Returns {'gauges': {'count': n, 'reals': bytes, 'ints': bytes, 'paths': [[(x, y)]] if paths=True else None},\n"
       "'stretches': n, ...}: the gauges in rank order as columns, float64 x10 per gauge (x1, y1, x2, y2, cx, cy, cd,\n"
@@ -328,7 +330,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "'typical_width', 'space_limit', 'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}.\n"
       "DBU throughout. space_limit_widths: spaces wider than this many typical widths are not pattern (0: keep all).\n"
       "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them. csv, gds, gds_layer, dbu:\n"
-      "as in voronoi_polygons.");
+      "as in voronoi_polygons. gauges_csv: also write the gauges there (gauges.csv, micrometres).");
 
   m.def(
       "write_gds",

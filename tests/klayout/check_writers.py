@@ -1,7 +1,7 @@
 # The core's writers (C++, used by the batch and the editor) against Python and KLayout, on
 # one layout:
 #   klayout -b -r tests/klayout/check_writers.py -rd input=FILE -rd layer=L/D -rd work=DIR
-# - voronoi.csv: the same bytes as the Python writer row by row;
+# - voronoi.csv and gauges.csv: the same bytes as the Python writers row by row;
 # - the GDSII drawing: read by KLayout and drawn by output.add_layers, each kind's layer holds
 #   exactly the pieces rounded to the grid by Python (ties to even), as zero-width paths, a
 #   piece rounding to one point left out; the temporary file goes with the Diagram;
@@ -62,7 +62,12 @@ for i, kind in enumerate(diagram.KINDS):
           % (kind, sum(got.values()), sum(want.values()), d.counts()[kind], "identical" if match else "DIFFERENT"))
     ok = ok and match
 
-gs = gauges.compute(polygons).gauges
+core_gcsv, py_gcsv = os.path.join(g["work"], "core_gauges.csv"), os.path.join(g["work"], "python_gauges.csv")
+gs = gauges.compute(polygons, dbu=ly.dbu, gauges_csv=core_gcsv).gauges
+gauge_output.write_csv(gs, py_gcsv, ly.dbu)
+same = filecmp.cmp(core_gcsv, py_gcsv, shallow=False) and sum(1 for _ in open(core_gcsv)) == len(gs) + 1
+print("gauges.csv, %d gauges: the core's %s the Python writer's" % (len(gs), "is" if same else "DIFFERS FROM"))
+ok = ok and same
 api, fast, resaved = (os.path.join(g["work"], n) for n in ("api.lyrdb", "fast.lyrdb", "resaved.lyrdb"))
 gauge_output.report(gs, ly.dbu, "TOP", g["input"]).save(api)
 gauge_output.write_report(gs, ly.dbu, "TOP", g["input"], fast)

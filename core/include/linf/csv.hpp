@@ -1,16 +1,23 @@
-// The diagram as CSV: one row per piece, in micrometres (the batch's voronoi.csv).
+// The diagram and the gauges as CSV, in micrometres (the batch's voronoi.csv and gauges.csv).
 //
-//   header: kind,x1,y1,x2,y2,d1,d2,a_x1,a_y1,a_x2,a_y2,b_x1,b_y1,b_x2,b_y2
-//   values: DBU times `dbu`, six decimals; a point site repeats its coordinates.
-// Written here rather than row by row in Python: a large layer has millions of pieces.
+//   voronoi.csv: kind,x1,y1,x2,y2,d1,d2,a_x1,a_y1,a_x2,a_y2,b_x1,b_y1,b_x2,b_y2
+//                (a point site repeats its coordinates)
+//   gauges.csv:  id,type,x1,y1,x2,y2,cx,cy,cd,score,norm_score,tiebreak,rank (id = rank)
+//   values: DBU times `dbu`, six decimals (norm_score as it is).
+// Written here rather than row by row in Python: a large layer has millions of pieces and
+// gauges. The same bytes as Python's csv module with "%.6f" (tested).
 #pragma once
 #include <string>
 
+#include "linf/gauge.hpp"
 #include "linf/piece.hpp"
 
 namespace linf {
 
 // Writes the file and its time into d.seconds_csv; throws std::runtime_error if it cannot.
 void write_pieces_csv(Diagram& d, double dbu, const std::string& path);
+
+// Gauges in rank order; throws std::runtime_error if the file cannot be written.
+void write_gauges_csv(const std::vector<Gauge>& gauges, double dbu, const std::string& path);
 
 }  // namespace linf

@@ -212,7 +212,8 @@ def report_max(args):
 
 def write_gauges(inp, result, gauges, args, window=None):
     t0 = time.perf_counter()
-    gauge_output.write_csv(gauges, inp.file("gauges.csv"), inp.dbu)
+    if not (gauges is result.gauges and getattr(result, "csv_path", None) == inp.file("gauges.csv")):
+        gauge_output.write_csv(gauges, inp.file("gauges.csv"), inp.dbu)
     cap = report_max(args)
     in_report = gauge_output.write_report(gauges, inp.dbu, inp.cell.name, inp.path, inp.file("gauges.lyrdb"), cap)
     res, top = inp.result_layout()
@@ -248,7 +249,8 @@ def cmd_voronoi(args):
 def cmd_gauges(args):
     inp = Input.from_args(args)
     window = parse_window(args["window"], inp.dbu) if args.get("window") else None
-    result = gauge_stage.compute(inp.polygons, tile=inp.tile)
+    result = gauge_stage.compute(inp.polygons, tile=inp.tile, dbu=inp.dbu,
+                                 gauges_csv=inp.file("gauges.csv") if window is None else None)
     gauges = result.gauges if window is None else gauge_stage.most_critical_in(result.gauges, window)
     s = write_gauges(inp, result, gauges, args, window)
     output.write_json(s, inp.file("summary.json"))
@@ -462,7 +464,7 @@ def flow(inp, args, progress=None):
     step = progress or (lambda stage: None)
     step("diagram and gauges")
     result = gauge_stage.compute(inp.polygons, draw_layer=inp.layer, tile=inp.tile, csv_path=inp.file("voronoi.csv"),
-                                 dbu=inp.dbu)
+                                 dbu=inp.dbu, gauges_csv=inp.file("gauges.csv"))
     step("writing the diagram and the gauges")
     sv = write_voronoi(inp, result.pieces_diagram)
     sg = write_gauges(inp, result, result.gauges, args)

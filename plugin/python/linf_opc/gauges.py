@@ -118,24 +118,26 @@ class Gauges:
 
 
 def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, draw_layer=None,
-            with_paths=False, tile=-1, csv_path=None, dbu=1.0):
+            with_paths=False, tile=-1, csv_path=None, dbu=1.0, gauges_csv=None):
     """draw_layer: a layer number: also keep the diagram, drawable (Gauges.pieces_diagram, a
     diagram.Diagram with its GDSII file, see diagram.compute), so that a flow writes both
     without building the diagram twice. with_paths: each gauge's `stretch` is its stretch's
     path [(x, y)] (else None). tile, csv_path, dbu: as in diagram.compute (the gauges are the
-    same for every tile size)."""
+    same for every tile size). gauges_csv: the core also writes gauges.csv there (micrometres,
+    `dbu`; Gauges.csv_path)."""
     from .diagram import Diagram
     t0 = time.perf_counter()
     gds = drawing.temporary() if draw_layer is not None else None
     try:
         raw = core.gauges_polygons(core_input(polygons), check, 2000, 0, tooth_fraction, space_limit_widths, False,
                                    with_paths, tile=tile, csv=csv_path or "", dbu=dbu, gds=gds or "",
-                                   gds_layer=draw_layer or 0)
+                                   gds_layer=draw_layer or 0, gauges_csv=gauges_csv or "")
     except BaseException:
         if gds:
             drawing.remove(gds)
         raise
     out = Gauges(raw, time.perf_counter() - t0)
+    out.csv_path = gauges_csv  # where the core already wrote gauges.csv, if it did
     if gds:
         out.pieces_diagram = Diagram(raw["diagram"], out.seconds["total"], csv_path, gds)
     return out
