@@ -201,6 +201,7 @@ struct Files {
   std::string csv, gds;
   int gds_layer = 0;
   double dbu = 1.0;
+  std::string gds_cell;
   DrawCounts drawn{};
   void write(Diagram& d) {
     if (!csv.empty()) write_pieces_csv(d, dbu, csv);
@@ -208,6 +209,7 @@ struct Files {
       GdsLayers L;
       L.layer = gds_layer;
       L.dbu = dbu;
+      L.cell = gds_cell;
       drawn = write_pieces_gds(d, L, gds);
     }
   }
@@ -247,9 +249,9 @@ PYBIND11_MODULE(linf_opc_core, m) {
   m.def(
       "voronoi_polygons",
       [](const py::object& polys, bool check, int pairs, int threads, double tile, const std::string& csv,
-         double dbu, bool with_pieces, const std::string& gds, int gds_layer) {
+         double dbu, bool with_pieces, const std::string& gds, int gds_layer, const std::string& gds_cell) {
         std::vector<Polygon> in = polygons_of(polys);
-        Files files{csv, gds, gds_layer, dbu};
+        Files files{csv, gds, gds_layer, dbu, gds_cell};
         Result r;
         {
           py::gil_scoped_release unlocked;
@@ -264,7 +266,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("pieces") = true,
-      py::arg("gds") = "", py::arg("gds_layer") = 0,
+      py::arg("gds") = "", py::arg("gds_layer") = 0, py::arg("gds_cell") = "VORONOI",
       "Diagram of polygons [(outer, [holes])], rings as [(x, y)] in integer DBU, or the same flat:\n"
       "(points, rings), points array('q') x0, y0, x1, y1, ..., rings array('q') of point counts, each outer\n"
       "ring followed by its holes with negative counts. Shapes are merged first.\n"
@@ -273,8 +275,9 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "threads: worker threads of the builder, 0 for one per core.\n"
       "tile: side of the builder's tiles in DBU (same diagram for every size); 0 one tile, < 0 automatic.\n"
       "csv: also write the pieces there (voronoi.csv, micrometres: DBU times dbu).\n"
-      "gds: also write them there as GDSII, zero-width paths on gds_layer, datatype 200 + kind index (dbu: its\n"
-      "units); 'drawn' then counts them per kind (a piece rounding to one grid point is not drawn).\n"
+      "gds: also write them there as GDSII, zero-width paths on gds_layer, datatype 200 + kind index, in one cell\n"
+      "named gds_cell (dbu: its units); 'drawn' then counts them per kind (a piece rounding to one grid point is\n"
+      "not drawn).\n"
       "pieces=False: 'pieces' is only their number (a large layer's pieces as tuples take gigabytes).\n"
       "'counts': pieces per kind. Raises DiagramError if the independent checker rejects the diagram.");
 
@@ -282,9 +285,9 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "gauges_polygons",
       [](const py::object& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
          bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu, const std::string& gds,
-         int gds_layer, const std::string& gauges_csv) {
+         int gds_layer, const std::string& gds_cell, const std::string& gauges_csv) {
         std::vector<Polygon> in = polygons_of(polys);
-        Files files{csv, gds, gds_layer, dbu};
+        Files files{csv, gds, gds_layer, dbu, gds_cell};
         Result r;
         Gauges g;
         double seconds = 0;
@@ -321,7 +324,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false, py::arg("paths") = false,
       py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("gds") = "", py::arg("gds_layer") = 0,
-      py::arg("gauges_csv") = "",
+      py::arg("gds_cell") = "VORONOI", py::arg("gauges_csv") = "",
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
       "Returns {'gauges': {'count': n, 'reals': bytes, 'ints': bytes, 'paths': [[(x, y)]] if paths=True else None},\n"
       "'stretches': n, ...}: the gauges in rank order as columns, float64 x10 per gauge (x1, y1, x2, y2, cx, cy, cd,\n"
@@ -330,17 +333,17 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "'typical_width', 'space_limit', 'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}.\n"
       "DBU throughout. space_limit_widths: spaces wider than this many typical widths are not pattern (0: keep all).\n"
       "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them. csv, gds, gds_layer, dbu:\n"
-      "as in voronoi_polygons. gauges_csv: also write the gauges there (gauges.csv, micrometres).");
+      "as in voronoi_polygons, and gds_cell. gauges_csv: also write the gauges there (gauges.csv, micrometres).");
 
   m.def(
       "write_gds",
       [](const std::string& path, double dbu, int layer, int datatype, py::buffer lines,
-         const std::vector<std::string>& labels) {
+         const std::vector<std::string>& labels, const std::string& cell) {
         const std::vector<double> v = doubles_of(lines, 6, "lines");
         const std::size_t n = v.size() / 6;
         if (!labels.empty() && labels.size() != n) throw py::value_error("one label per line, or none");
         py::gil_scoped_release unlocked;
-        GdsWriter w(path, dbu, "LINES");
+        GdsWriter w(path, dbu, cell);
         for (std::size_t i = 0; i < n; ++i) {
           const double* p = &v[6 * i];
           w.path(layer, datatype, p[0], p[1], p[2], p[3]);
@@ -349,9 +352,10 @@ PYBIND11_MODULE(linf_opc_core, m) {
         w.close();
       },
       py::arg("path"), py::arg("dbu"), py::arg("layer"), py::arg("datatype"), py::arg("lines"), py::arg("labels"),
+      py::arg("cell") = "LINES",
       "Writes lines as GDSII for the editor to read in one call: lines array('d') of x1, y1, x2, y2, tx, ty per\n"
       "line in DBU; each a zero-width path on layer/datatype, with its label (if labels is not empty) as a text at\n"
-      "(tx, ty). Coordinates rounded to the grid, ties to even; dbu: micrometres per DBU.");
+      "(tx, ty), in one cell of that name. Coordinates rounded to the grid, ties to even; dbu: micrometres per DBU.");
 
   m.def(
       "select_windows",

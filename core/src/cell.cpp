@@ -20,26 +20,22 @@ Cell clip(const Cell& in, const Affine& h) {
   if (all_in) return in;
   if (all_out) return out;
   out.v.reserve(n + 1);
+  // Rounding can repeat a vertex: such repeats are dropped as they come.
+  auto push = [&](const Vec2& p) {
+    if (out.v.empty() || out.v.back().x != p.x || out.v.back().y != p.y) out.v.push_back(p);
+  };
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = (i + 1) % n;
     const double vi = val[i], vj = val[j];
-    if (vi >= 0) out.v.push_back(in.v[i]);
+    if (vi >= 0) push(in.v[i]);
     if ((vi > 0 && vj < 0) || (vi < 0 && vj > 0)) {
       const double t = vi / (vi - vj);
-      Vec2 p{in.v[i].x + t * (in.v[j].x - in.v[i].x), in.v[i].y + t * (in.v[j].y - in.v[i].y)};
-      out.v.push_back(p);
+      push({in.v[i].x + t * (in.v[j].x - in.v[i].x), in.v[i].y + t * (in.v[j].y - in.v[i].y)});
     }
   }
-  // Drop repeated vertices that rounding can produce.
-  Cell clean;
-  for (std::size_t i = 0; i < out.v.size(); ++i) {
-    const Vec2& p = out.v[i];
-    const Vec2& q = out.v[(i + 1) % out.v.size()];
-    if (p.x == q.x && p.y == q.y) continue;
-    clean.v.push_back(p);
-  }
-  if (clean.v.size() < 3 || area(clean) <= 0) return Cell{};
-  return clean;
+  if (out.v.size() > 1 && out.v.front().x == out.v.back().x && out.v.front().y == out.v.back().y) out.v.pop_back();
+  if (out.v.size() < 3 || area(out) <= 0) return Cell{};
+  return out;
 }
 
 bool clip_in_place(Cell& c, const Affine& h) {

@@ -119,7 +119,7 @@ void GdsWriter::close() {
 }
 
 DrawCounts write_pieces_gds(const Diagram& d, const GdsLayers& L, const std::string& path) {
-  GdsWriter w(path, L.dbu, "VORONOI");
+  GdsWriter w(path, L.dbu, L.cell);
   DrawCounts n{};
   for (const Piece& p : d.pieces) {
     if (grid(p.p.x) == grid(p.q.x) && grid(p.p.y) == grid(p.q.y)) continue;

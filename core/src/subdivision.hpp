@@ -93,6 +93,9 @@ struct LocalCell {
   // everywhere on the cell; inline for the usual few sites.
   boost::container::small_vector<signed char, 16> af, ag;
   int ref = -1;  // a present site with an affine f here, the reference for the dominance test
+  // The reference's values and the allowances at the vertices, once per cell and reference
+  // (absent_in asks for them once per site); empty until asked.
+  mutable boost::container::small_vector<double, 10> ref_at, tol_at;
 };
 constexpr signed char kAbsent = -2;
 
@@ -282,20 +285,26 @@ class Builder {
   // Then t owns nothing there, ties nowhere, and need not cut the cell (see dominated()).
   bool absent_in(const LocalCell& lc, const std::vector<int>& C, std::size_t t) const {
     if (lc.ref < 0) return false;
-    const Affine& q = f_[C[lc.ref]].piece[lc.af[lc.ref]];
     const auto& v = lc.cell.v;
-    boost::container::small_vector<double, 10> ref(v.size()), e(v.size());
-    for (std::size_t k = 0; k < v.size(); ++k) ref[k] = q.at(v[k].x, v[k].y), e[k] = tol(v[k]);
-    return piece_margin(f_[C[t]], v.data(), v.size(), ref.data(), e.data()) > 1;
+    if (lc.ref_at.empty()) {
+      const Affine& q = f_[C[lc.ref]].piece[lc.af[lc.ref]];
+      lc.ref_at.resize(v.size()), lc.tol_at.resize(v.size());
+      for (std::size_t k = 0; k < v.size(); ++k) lc.ref_at[k] = q.at(v[k].x, v[k].y), lc.tol_at[k] = tol(v[k]);
+    }
+    return piece_margin(f_[C[t]], v.data(), v.size(), lc.ref_at.data(), lc.tol_at.data()) > 1;
   }
 
   // The reference of a cell after site k became affine on it: whichever of the two has the
   // lower maximum over the cell.
   void update_ref(LocalCell& lc, const std::vector<int>& C, std::size_t k) const {
-    if (lc.ref < 0) { lc.ref = int(k); return; }
+    if (lc.ref < 0) {
+      lc.ref = int(k);
+      lc.ref_at.clear();
+      return;
+    }
     const double mk = max_at_vertices(f_[C[k]].piece[lc.af[k]], lc.cell);
     const double mr = max_at_vertices(f_[C[lc.ref]].piece[lc.af[lc.ref]], lc.cell);
-    if (mk < mr) lc.ref = int(k);
+    if (mk < mr) lc.ref = int(k), lc.ref_at.clear();
   }
 
   // Splits `cells` so that site k (of C) is affine on each: by f, where it is present (dropping
@@ -434,7 +443,7 @@ class Builder {
         }
       }
       if (r.empty()) continue;
-      emit(r, lc, i, C);
+      emit(r, lc, i, C, order);
     }
   }
 
@@ -535,18 +544,27 @@ class Builder {
     }
   }
 
-  void emit(const Cell& r, const LocalCell& lc, std::size_t ti, const std::vector<int>& C) {
+  // `contenders`: the cell's sites that can be least somewhere on it (see regions()); no other
+  // site ties with t on t's region, where t is at most the least greatest value.
+  template <class Contenders>
+  void emit(const Cell& r, const LocalCell& lc, std::size_t ti, const std::vector<int>& C,
+            const Contenders& contenders) {
     const int t = C[ti];
     const std::size_t n = r.v.size();
-    // Every present site's value and the allowance at every vertex, once: each vertex is the
-    // end of two edges, and the tie test below reads them for every site.
-    const std::size_t k = C.size();
+    // Every contender's value and the allowance at every vertex, once: each vertex is the end
+    // of two edges, and the tie test below reads them for every contender.
+    const std::size_t k = contenders.size();
     boost::container::small_vector<double, 160> val(n * k);
     boost::container::small_vector<double, 10> tl(n);
+    std::size_t tk = 0;  // t's place among the contenders
+    for (std::size_t j = 0; j < k; ++j)
+      if (contenders[j].second == ti) tk = j;
     for (std::size_t v = 0; v < n; ++v) {
       tl[v] = tol(r.v[v]);
-      for (std::size_t j = 0; j < k; ++j)
-        if (lc.af[j] >= 0) val[v * k + j] = f_[C[j]].piece[lc.af[j]].at(r.v[v].x, r.v[v].y);
+      for (std::size_t j = 0; j < k; ++j) {
+        const std::size_t cj = contenders[j].second;
+        val[v * k + j] = f_[C[cj]].piece[lc.af[cj]].at(r.v[v].x, r.v[v].y);
+      }
     }
     for (std::size_t e = 0; e < n; ++e) {
       const Vec2 p = r.v[e], q = r.v[(e + 1) % n];
@@ -568,9 +586,11 @@ class Builder {
       const double* vq = &val[e2 * k];
       boost::container::small_vector<int, 8> tied{t};
       for (std::size_t j = 0; j < k; ++j) {
-        if (j == ti || lc.af[j] < 0) continue;
-        if (std::fabs(vp[j] - vp[ti]) <= tl[e] && std::fabs(vq[j] - vq[ti]) <= tl[e2]) tied.push_back(C[j]);
+        if (j == tk) continue;
+        if (std::fabs(vp[j] - vp[tk]) <= tl[e] && std::fabs(vq[j] - vq[tk]) <= tl[e2])
+          tied.push_back(C[contenders[j].second]);
       }
+      std::sort(tied.begin() + 1, tied.end());  // the sites' order, as C's: near-ties decide alike
       if (tied.size() == 1) continue;  // a split inside t's own region
       // The owner beyond is one of the tied; emit_piece keeps only t < owner (the other side
       // reports the rest), so where all come before t there is nothing to emit.

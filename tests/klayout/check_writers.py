@@ -4,7 +4,8 @@
 # - voronoi.csv and gauges.csv: the same bytes as the Python writers row by row;
 # - the GDSII drawing: read by KLayout and drawn by output.add_layers, each kind's layer holds
 #   exactly the pieces rounded to the grid by Python (ties to even), as zero-width paths, a
-#   piece rounding to one point left out; the temporary file goes with the Diagram;
+#   piece rounding to one point left out, copied in or read straight into a fresh layout; the
+#   temporary file goes with the Diagram;
 # - gauges.lyrdb: written directly, loaded and saved by KLayout, the same bytes as the report
 #   database filled through KLayout's API and saved;
 #   capped at N gauges a type, it holds the N most critical of each;
@@ -30,7 +31,7 @@ ly.read(g["input"])
 L, D = layout.parse_layer(g["layer"])
 polygons = layout.polygons_of(layout.region_of(ly.top_cells()[0], ly.find_layer(L, D)))
 core_csv, py_csv = os.path.join(g["work"], "core.csv"), os.path.join(g["work"], "python.csv")
-d = diagram.compute(polygons, csv_path=core_csv, dbu=ly.dbu, draw_layer=L)
+d = diagram.compute(polygons, csv_path=core_csv, dbu=ly.dbu, draw_layer=L, draw_cell="TOP")
 d.csv_path = None  # make output.write_csv write its own
 output.write_csv(d, py_csv, ly.dbu)
 same = filecmp.cmp(core_csv, py_csv, shallow=False)
@@ -57,7 +58,14 @@ for i, kind in enumerate(diagram.KINDS):
         pts = [(q.x, q.y) for q in s.path.each_point()] if s.is_path() else []
         widths.add(s.path.width if s.is_path() else None)
         got[tuple(pts)] += 1
-    match = got == want and widths <= {0} and drawn[kind] == sum(want.values())
+    # Read straight into a fresh layout (the batch's way), the same shapes.
+    direct = pya.Layout()
+    direct.dbu = ly.dbu
+    dtop = direct.create_cell("TOP")
+    output.add_layers(direct, dtop, d, L, D, direct=True)
+    got_direct = Counter(tuple((q.x, q.y) for q in sh.path.each_point())
+                         for sh in dtop.shapes(direct.find_layer(L, 200 + i)).each() if sh.is_path())
+    match = got == want == got_direct and widths <= {0} and drawn[kind] == sum(want.values())
     print("gds drawing, %s: %d paths, %d pieces of %d drawn by Python, %s"
           % (kind, sum(got.values()), sum(want.values()), d.counts()[kind], "identical" if match else "DIFFERENT"))
     ok = ok and match

@@ -32,6 +32,7 @@ struct GdsLayers {
   int layer = 0;                                    // every kind on this layer number...
   std::array<int, 4> datatype{200, 201, 202, 203};  // ...with these datatypes (PieceKind order)
   double dbu = 0.001;
+  std::string cell = "VORONOI";  // name the target cell's, and KLayout reads the file straight into it
 };
 
 // Pieces drawn per kind (PieceKind order). A piece whose ends round to the same grid point

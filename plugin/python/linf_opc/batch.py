@@ -180,7 +180,7 @@ def write_voronoi(inp, diagram):
     t0 = time.perf_counter()
     output.write_csv(diagram, inp.file("voronoi.csv"), inp.dbu)
     res, top = inp.result_layout()
-    drawn = output.add_layers(res, top, diagram, inp.layer, inp.datatype)
+    drawn = output.add_layers(res, top, diagram, inp.layer, inp.datatype, direct=True)
     res.write(inp.file("voronoi.oas"))
     s = output.summary(diagram, inp.dbu, input=inp.path, cell=inp.cell.name, layer=inp.name,
                        polygons=len(inp.polygons), drawn=drawn)
@@ -217,7 +217,7 @@ def write_gauges(inp, result, gauges, args, window=None):
     cap = report_max(args)
     in_report = gauge_output.write_report(gauges, inp.dbu, inp.cell.name, inp.path, inp.file("gauges.lyrdb"), cap)
     res, top = inp.result_layout()
-    gauge_output.add_layer(res, top, gauges, inp.layer, inp.datatype)
+    gauge_output.add_layer(res, top, gauges, inp.layer, inp.datatype, direct=True)
     res.write(inp.file("gauges.oas"))
     s = gauge_output.summary(result, inp.dbu)
     s.update(input=inp.path, cell=inp.cell.name, layer=inp.name, polygons=len(inp.polygons),
@@ -241,7 +241,8 @@ def gauges_line(s, gauges, dbu, d):
 def cmd_voronoi(args):
     inp = Input.from_args(args)
     s = write_voronoi(inp, diagram_stage.compute(inp.polygons, tile=inp.tile, csv_path=inp.file("voronoi.csv"),
-                                                 dbu=inp.dbu, with_pieces=False, draw_layer=inp.layer))
+                                                 dbu=inp.dbu, with_pieces=False, draw_layer=inp.layer,
+                                                 draw_cell=inp.cell.name))
     output.write_json(s, inp.file("summary.json"))
     return voronoi_line(s, inp.dir)
 
@@ -464,7 +465,7 @@ def flow(inp, args, progress=None):
     step = progress or (lambda stage: None)
     step("diagram and gauges")
     result = gauge_stage.compute(inp.polygons, draw_layer=inp.layer, tile=inp.tile, csv_path=inp.file("voronoi.csv"),
-                                 dbu=inp.dbu, gauges_csv=inp.file("gauges.csv"))
+                                 dbu=inp.dbu, gauges_csv=inp.file("gauges.csv"), draw_cell=inp.cell.name)
     step("writing the diagram and the gauges")
     sv = write_voronoi(inp, result.pieces_diagram)
     sg = write_gauges(inp, result, result.gauges, args)

@@ -39,18 +39,19 @@ class Diagram:
 
 
 def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=1.0, with_pieces=True,
-            draw_layer=None):
+            draw_layer=None, draw_cell="VORONOI"):
     """tile: side of the builder's tiles in DBU; 0 one tile, -1 automatic. The diagram is the
     same for every tile size; tiles bound the memory the builder holds at once.
     csv_path: the core also writes voronoi.csv there (micrometres, `dbu`).
     draw_layer: a layer number: the core also writes the pieces as GDSII for output.add_layers
-    (datatypes 200 + kind). with_pieces=False: no Python object per piece (a full layer has
+    (datatypes 200 + kind; one cell named draw_cell). with_pieces=False: no Python object per piece (a full layer has
     tens of millions of them): Diagram.pieces is None, n_pieces and counts() remain."""
     t0 = time.perf_counter()
     gds = drawing.temporary() if draw_layer is not None else None
     try:
         raw = core.voronoi_polygons(core_input(polygons), check, check_pairs, tile=tile, csv=csv_path or "", dbu=dbu,
-                                    pieces=with_pieces, gds=gds or "", gds_layer=draw_layer or 0)
+                                    pieces=with_pieces, gds=gds or "", gds_layer=draw_layer or 0,
+                                    gds_cell=draw_cell)
     except BaseException:
         if gds:
             drawing.remove(gds)

@@ -46,9 +46,10 @@ def write_csv(gauges, path, dbu):
             w.writerow([g.rank, g.type] + um + ["%.6f" % g.norm_score, "%.6f" % (g.tiebreak * dbu), g.rank])
 
 
-def add_layer(layout, cell, gauges, layer, datatype):
+def add_layer(layout, cell, gauges, layer, datatype, direct=False):
     """Draws each measurement line (a zero-width path) and its rank text on the gauge layer,
-    cleared first so that the action can be repeated, through a GDSII file (output.copy_drawing).
+    cleared first so that the action can be repeated, through a GDSII file (output.copy_drawing,
+    also for `direct`).
     Returns the layer index."""
     info = gauge_layer_info(layer, datatype)
     index = layout.find_layer(info)
@@ -63,8 +64,9 @@ def add_layer(layout, cell, gauges, layer, datatype):
         labels = [label(g, layout.dbu) for g in gauges]
     path = drawing.temporary()
     try:
-        core.write_gds(path, layout.dbu, layer, DATATYPE, lines, labels)
-        copy_drawing(cell, path, {(layer, DATATYPE): index})
+        core.write_gds(path, layout.dbu, layer, DATATYPE, lines, labels, cell=cell.name)
+        del lines, labels
+        copy_drawing(cell, path, {(layer, DATATYPE): index}, direct)
     finally:
         drawing.remove(path)
     return index

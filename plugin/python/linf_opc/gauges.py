@@ -118,9 +118,9 @@ class Gauges:
 
 
 def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, draw_layer=None,
-            with_paths=False, tile=-1, csv_path=None, dbu=1.0, gauges_csv=None):
+            with_paths=False, tile=-1, csv_path=None, dbu=1.0, gauges_csv=None, draw_cell="VORONOI"):
     """draw_layer: a layer number: also keep the diagram, drawable (Gauges.pieces_diagram, a
-    diagram.Diagram with its GDSII file, see diagram.compute), so that a flow writes both
+    diagram.Diagram with its GDSII file, see diagram.compute, also for draw_cell), so that a flow writes both
     without building the diagram twice. with_paths: each gauge's `stretch` is its stretch's
     path [(x, y)] (else None). tile, csv_path, dbu: as in diagram.compute (the gauges are the
     same for every tile size). gauges_csv: the core also writes gauges.csv there (micrometres,
@@ -131,7 +131,7 @@ def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, d
     try:
         raw = core.gauges_polygons(core_input(polygons), check, 2000, 0, tooth_fraction, space_limit_widths, False,
                                    with_paths, tile=tile, csv=csv_path or "", dbu=dbu, gds=gds or "",
-                                   gds_layer=draw_layer or 0, gauges_csv=gauges_csv or "")
+                                   gds_layer=draw_layer or 0, gds_cell=draw_cell, gauges_csv=gauges_csv or "")
     except BaseException:
         if gds:
             drawing.remove(gds)

@@ -32,9 +32,20 @@ def write_csv(diagram, path, dbu):
             w.writerow([p.kind] + ["%.6f" % (v * dbu) for v in p[1:15]])
 
 
-def copy_drawing(cell, path, targets):
-    """Reads a GDSII file the core wrote (see drawing.py) and inserts its shapes on
-    layer/datatype (l, d) into `cell`'s layer targets[(l, d)] (an index of cell's layout)."""
+def copy_drawing(cell, path, targets, direct=False):
+    """Puts the shapes of a GDSII file the core wrote (see drawing.py) on layer/datatype (l, d)
+    into `cell`'s layer targets[(l, d)] (an index of cell's layout): read into a layout of its
+    own and copied, an undoable insertion; or, `direct`, read straight into cell's layout,
+    which holds them once instead of twice on the way (the batch's fresh result layouts: a
+    full layer's diagram is tens of millions of shapes; the file's cell must be named as
+    `cell`, and layers are matched by layer and datatype)."""
+    layout = cell.layout()
+    if direct:
+        cells = sum(1 for _ in layout.each_cell())
+        layout.read(path)
+        if sum(1 for _ in layout.each_cell()) != cells:
+            raise ValueError("the drawing %s is not for cell %s" % (path, cell.name))
+        return
     drawn = pya.Layout()
     drawn.read(path)
     if not drawn.top_cells():
@@ -46,10 +57,10 @@ def copy_drawing(cell, path, targets):
             cell.shapes(index).insert(source.shapes(found))
 
 
-def add_layers(layout, cell, diagram, layer, datatype):
+def add_layers(layout, cell, diagram, layer, datatype, direct=False):
     """Draws every piece as a zero-width path on its kind's layer (cleared first, so the
     action can be repeated), from the GDSII file the core wrote (diagram.compute with
-    draw_layer=layer). A piece shorter than the database grid rounds
+    draw_layer=layer; `direct`: see copy_drawing, draw_cell=cell.name). A piece shorter than the database grid rounds
     to a point and is not drawn (the CSV keeps it). Returns {kind: number of pieces drawn}."""
     if not diagram.gds_path:
         raise ValueError("the diagram was computed without draw_layer: nothing to draw")
@@ -61,7 +72,7 @@ def add_layers(layout, cell, diagram, layer, datatype):
             index = layout.insert_layer(info)
         cell.shapes(index).clear()
         targets[(layer, DATATYPE_BASE + KINDS.index(kind))] = index
-    copy_drawing(cell, diagram.gds_path, targets)
+    copy_drawing(cell, diagram.gds_path, targets, direct)
     return {k: diagram.drawn[k] for k in KINDS}
 
 
