@@ -3,6 +3,7 @@
 
 #include <array>
 #include <climits>
+#include <cstdio>
 #include <cstring>
 #include <chrono>
 #include <string>
@@ -175,15 +176,24 @@ py::dict gauge_columns(const Sites& sites, Gauges& g, bool with_paths) {
   return out;
 }
 
-// A contiguous buffer of doubles (array('d'), memoryview), its length a multiple of `group`.
-std::vector<double> doubles_of(const py::buffer& b, std::size_t group, const char* name) {
-  const py::buffer_info info = b.request();
-  if (info.format != py::format_descriptor<double>::format() || info.ndim != 1)
+// A contiguous buffer of doubles (array('d'), memoryview), its length a multiple of `group`,
+// read in place: a full layer's gauge points are hundreds of MB.
+struct Doubles {
+  py::buffer_info info;
+  const double* data = nullptr;
+  std::size_t n = 0;
+  std::size_t size() const { return n; }
+  double operator[](std::size_t i) const { return data[i]; }
+};
+
+Doubles doubles_of(const py::buffer& b, std::size_t group, const char* name) {
+  Doubles d{b.request()};
+  if (d.info.format != py::format_descriptor<double>::format() || d.info.ndim != 1)
     throw py::value_error(std::string(name) + " must be a flat array of doubles, array('d')");
-  const auto* p = static_cast<const double*>(info.ptr);
-  const std::size_t n = std::size_t(info.shape[0]);
-  if (n % group) throw py::value_error(std::string(name) + ": length must be a multiple of " + std::to_string(group));
-  return std::vector<double>(p, p + n);
+  d.data = static_cast<const double*>(d.info.ptr);
+  d.n = std::size_t(d.info.shape[0]);
+  if (d.n % group) throw py::value_error(std::string(name) + ": length must be a multiple of " + std::to_string(group));
+  return d;
 }
 
 DiagramOptions options(bool check, int pairs, int threads, double tile = 0) {
@@ -336,26 +346,36 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "as in voronoi_polygons, and gds_cell. gauges_csv: also write the gauges there (gauges.csv, micrometres).");
 
   m.def(
-      "write_gds",
-      [](const std::string& path, double dbu, int layer, int datatype, py::buffer lines,
-         const std::vector<std::string>& labels, const std::string& cell) {
-        const std::vector<double> v = doubles_of(lines, 6, "lines");
-        const std::size_t n = v.size() / 6;
-        if (!labels.empty() && labels.size() != n) throw py::value_error("one label per line, or none");
+      "write_gauges_gds",
+      [](const std::string& path, double dbu, int layer, int datatype, py::buffer reals, py::buffer ints,
+         const std::string& cell) {
+        // Read in place: a full layer's columns are hundreds of MB.
+        const py::buffer_info ri = reals.request(), ii = ints.request();
+        if (ri.itemsize != 8 || ri.format != "d" || ii.itemsize != 4 || (ii.format != "i" && ii.format != "l"))
+          throw py::value_error("reals must be float64 and ints int32 columns, as gauges_polygons returns them");
+        const std::size_t n = std::size_t(ri.size) / 10;
+        if (std::size_t(ri.size) != 10 * n || std::size_t(ii.size) != 13 * n)
+          throw py::value_error("reals must hold 10 values a gauge and ints 13");
+        const auto* r = static_cast<const double*>(ri.ptr);
+        const auto* k = static_cast<const std::int32_t*>(ii.ptr);
         py::gil_scoped_release unlocked;
         GdsWriter w(path, dbu, cell);
-        for (std::size_t i = 0; i < n; ++i) {
-          const double* p = &v[6 * i];
-          w.path(layer, datatype, p[0], p[1], p[2], p[3]);
-          if (!labels.empty()) w.text(layer, datatype, p[4], p[5], labels[i]);
+        char label[96];
+        for (std::size_t i = 0; i < n; ++i, r += 10, k += 13) {
+          w.path(layer, datatype, r[0], r[1], r[2], r[3]);
+          if (k[12] < 0 || k[12] > int(GaugeType::T)) throw std::out_of_range("gauge type index out of range");
+          // As Python's "#%d %s %.4g" % (rank, type, cd * dbu) (gauge_output.label; tested).
+          std::snprintf(label, sizeof label, "#%d %s %.4g", k[0], gauge_type_name(GaugeType(k[12])), r[6] * dbu);
+          w.text(layer, datatype, r[4], r[5], label);
         }
         w.close();
       },
-      py::arg("path"), py::arg("dbu"), py::arg("layer"), py::arg("datatype"), py::arg("lines"), py::arg("labels"),
-      py::arg("cell") = "LINES",
-      "Writes lines as GDSII for the editor to read in one call: lines array('d') of x1, y1, x2, y2, tx, ty per\n"
-      "line in DBU; each a zero-width path on layer/datatype, with its label (if labels is not empty) as a text at\n"
-      "(tx, ty), in one cell of that name. Coordinates rounded to the grid, ties to even; dbu: micrometres per DBU.");
+      py::arg("path"), py::arg("dbu"), py::arg("layer"), py::arg("datatype"), py::arg("reals"), py::arg("ints"),
+      py::arg("cell") = "GAUGES",
+      "Writes gauges as GDSII for the editor to read in one call, from the columns gauges_polygons returns (reals\n"
+      "float64 x10, ints int32 x13 a gauge): each measurement line a zero-width path on layer/datatype and its label\n"
+      "'#rank type cd' (cd in micrometres) as a text at the gauge point, in one cell of that name. Coordinates\n"
+      "rounded to the grid, ties to even; dbu: micrometres per DBU.");
 
   m.def(
       "select_windows",
@@ -363,7 +383,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
          bool brute) {
         // Flat arrays of doubles (array('d')): tens of thousands of gauges cross without
         // building a Python object per value.
-        const std::vector<double> sv = doubles_of(spots, 4, "spots"), mv = doubles_of(markers, 4, "markers");
+        const Doubles sv = doubles_of(spots, 4, "spots"), mv = doubles_of(markers, 4, "markers");
         std::vector<Spot> sp;
         sp.reserve(sv.size() / 4);
         for (std::size_t i = 0; i < sv.size() / 4; ++i)
@@ -422,7 +442,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
   m.def(
       "free_windows",
       [](py::buffer taken, py::buffer points, double side) {
-        const std::vector<double> t = doubles_of(taken, 4, "taken"), p = doubles_of(points, 2, "points");
+        const Doubles t = doubles_of(taken, 4, "taken"), p = doubles_of(points, 2, "points");
         std::vector<Box> tb;
         tb.reserve(t.size() / 4);
         for (std::size_t i = 0; i < t.size(); i += 4) tb.push_back({t[i], t[i + 1], t[i + 2], t[i + 3]});
@@ -457,7 +477,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "estimate_pitch",
       [](const py::buffer& widths, const py::buffer& spaces) {
         auto pairs = [](const py::buffer& b, const char* name) {
-          const std::vector<double> v = doubles_of(b, 2, name);
+          const Doubles v = doubles_of(b, 2, name);
           std::vector<std::pair<double, double>> out(v.size() / 2);
           for (std::size_t i = 0; i < out.size(); ++i) out[i] = {v[2 * i], v[2 * i + 1]};
           return out;

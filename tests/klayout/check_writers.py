@@ -120,7 +120,12 @@ for sh in top.shapes(index).each():
         got[("text", sh.text.string, (sh.text.x, sh.text.y))] += 1
     else:
         got[("other", str(sh))] += 1
-same = got == want
+# From Gauge records (the per-pattern mode's subsets), the same layer.
+records = pya.Layout()
+records.dbu = ly.dbu
+rtop = records.create_cell("TOP")
+ri = gauge_output.add_layer(records, rtop, list(gs), L, D)
+same = got == want and Counter(str(sh) for sh in rtop.shapes(ri).each()) == Counter(str(sh) for sh in top.shapes(index).each())
 print("gauge layer: %d shapes for %d gauges, %s" % (sum(got.values()), len(gs), "identical" if same else "DIFFERENT"))
 ok = ok and same
 

@@ -469,13 +469,15 @@ def flow(inp, args, progress=None):
     step("writing the diagram and the gauges")
     sv = write_voronoi(inp, result.pieces_diagram)
     sg = write_gauges(inp, result, result.gauges, args)
-    rdb = new_rdb(inp, "linf_opc flow")
-    rdb.load(inp.file("gauges.lyrdb"))  # flow.lyrdb: the gauges' categories, then the selection's and the split's
-    rdb.generator = "linf_opc flow"
     step("pattern selection")
     sel = Selected(inp, args, result)
     step("split")
     split = split_of(args, sel)
+    # flow.lyrdb: the gauges' categories, then the selection's and the split's (loaded only now:
+    # on a full layer it holds hundreds of thousands of items, which the selection can do without)
+    rdb = new_rdb(inp, "linf_opc flow")
+    rdb.load(inp.file("gauges.lyrdb"))
+    rdb.generator = "linf_opc flow"
     stats = write_selection(inp, sel, rdb)
     ss = write_split(inp, split, rdb)
     rdb.save(inp.file("flow.lyrdb"))

@@ -27,7 +27,7 @@ def _call(name):
 voronoi_polygons = _call("voronoi_polygons")
 voronoi_sites = _call("voronoi_sites")
 gauges_polygons = _call("gauges_polygons")
-write_gds = _call("write_gds")
+write_gauges_gds = _call("write_gauges_gds")
 select_windows = _call("select_windows")
 cover_points = _call("cover_points")
 free_windows = _call("free_windows")

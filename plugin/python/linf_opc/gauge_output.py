@@ -1,6 +1,5 @@
 """Writing gauges: gauges.csv (micrometres), a gauge layer, a report database for the marker browser."""
 import csv
-from array import array
 from xml.sax import saxutils
 
 import pya
@@ -28,11 +27,8 @@ def gauge_layer_info(layer, datatype):
 
 
 def label(g, dbu):
-    return label_of(g.rank, g.type, g.cd, dbu)
-
-
-def label_of(rank, type_name, cd, dbu):
-    return "#%d %s %.4g" % (rank, type_name, cd * dbu)
+    """The gauge's text on the gauge layer (the core writes the same, see write_gauges_gds)."""
+    return "#%d %s %.4g" % (g.rank, g.type, g.cd * dbu)
 
 
 def write_csv(gauges, path, dbu):
@@ -56,16 +52,10 @@ def add_layer(layout, cell, gauges, layer, datatype, direct=False):
     if index is None:
         index = layout.insert_layer(info)
     cell.shapes(index).clear()
-    if isinstance(gauges, GaugeTable):  # whole columns, no Python object per gauge
-        lines = gauges.lines()
-        labels = [label_of(r, t, cd, layout.dbu) for r, t, cd in gauges.label_fields()]
-    else:
-        lines = array("d", (v for g in gauges for v in (g.x1, g.y1, g.x2, g.y2, g.cx, g.cy)))
-        labels = [label(g, layout.dbu) for g in gauges]
+    table = gauges if isinstance(gauges, GaugeTable) else GaugeTable.of(gauges)
     path = drawing.temporary()
     try:
-        core.write_gds(path, layout.dbu, layer, DATATYPE, lines, labels, cell=cell.name)
-        del lines, labels
+        core.write_gauges_gds(path, layout.dbu, layer, DATATYPE, *table.columns(), cell=cell.name)
         copy_drawing(cell, path, {(layer, DATATYPE): index}, direct)
     finally:
         drawing.remove(path)

@@ -31,6 +31,19 @@ class GaugeTable(Sequence):
         self._ints = memoryview(columns["ints"]).cast("i")
         self._paths = columns["paths"]
 
+    @classmethod
+    def of(cls, gauges):
+        """The columns of Gauge records (a per-pattern subset, say), without their paths."""
+        reals = array("d", (v for g in gauges for v in (g.x1, g.y1, g.x2, g.y2, g.cx, g.cy, g.cd, g.score,
+                                                        g.norm_score, g.tiebreak)))
+        ints = array("i", (v for g in gauges for v in (g.rank, g.teeth, g.site_a, g.site_b, *g.site_a_geom,
+                                                       *g.site_b_geom, TYPES.index(g.type))))
+        return cls({"count": len(reals) // 10, "reals": reals.tobytes(), "ints": ints.tobytes(), "paths": None})
+
+    def columns(self):
+        """The core's columns as they came: (reals float64 x10, ints int32 x13 a gauge)."""
+        return self._reals, self._ints
+
     def __len__(self):
         return self._n
 
@@ -61,14 +74,6 @@ class GaugeTable(Sequence):
         m[3::4] = self._reals[8::10]
         return out
 
-    def lines(self):
-        """array('d'): x1, y1, x2, y2, cx, cy per gauge (the measurement line, the gauge point)."""
-        out = array("d", bytes(48 * self._n))
-        m = memoryview(out)
-        for k in range(6):
-            m[k::6] = self._reals[k::10]
-        return out
-
     def centres(self):
         """(cx, cy): the gauge points' coordinates, two sequences indexed by gauge."""
         return self._reals[4::10], self._reals[5::10]
@@ -76,10 +81,6 @@ class GaugeTable(Sequence):
     def type_indices(self):
         """The type of each gauge as its index in TYPES, rank order."""
         return self._ints[12::13]
-
-    def label_fields(self):
-        """(rank, type, cd) per gauge, rank order."""
-        return zip(self._ints[0::13], (TYPES[k] for k in self._ints[12::13]), self._reals[6::10])
 
     def cd_extension(self, type_name):
         """array('d'): cd, tiebreak pairs of the gauges of one type, rank order."""

@@ -13,6 +13,7 @@ GUI test proves the editor survives it).
 """
 import os
 import pickle
+from array import array
 import signal
 import subprocess
 import sys
@@ -44,6 +45,15 @@ except Exception as e:
     result = ("Error", "%s: %s" % (type(e).__name__, e))
 pickle.dump(result, sys.stdout.buffer, protocol=pickle.HIGHEST_PROTOCOL)
 """
+
+
+def _picklable(value):
+    """Memoryviews (the gauge table's columns) cannot be pickled: the same values as an array."""
+    if isinstance(value, memoryview):
+        out = array(value.format)
+        out.frombytes(value.tobytes())
+        return out
+    return value
 
 
 class WorkerError(RuntimeError):
@@ -83,7 +93,8 @@ class Runner:
         self.seconds = seconds if seconds is not None else (float(env) if env else None)
 
     def __call__(self, name, args, kwargs):
-        payload = pickle.dumps((name, args, kwargs), protocol=pickle.HIGHEST_PROTOCOL)
+        payload = pickle.dumps((name, [_picklable(a) for a in args], {k: _picklable(v) for k, v in kwargs.items()}),
+                               protocol=pickle.HIGHEST_PROTOCOL)
         # Output and messages go to files, not pipes: a pipe the parent does not drain while it
         # waits would block the child.
         with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
