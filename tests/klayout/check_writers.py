@@ -102,7 +102,8 @@ for item in rdb.each_item():
     rank = [v.float() for v in item.each_value() if v.tag_id == rdb.user_tag_id("rank")][0]
     got_ranks.setdefault(rdb.category_by_id(item.category_id()).name(), []).append(int(rank))
 same = (got_ranks == want_ranks and n == sum(map(len, want_ranks.values())) and
-        [x.rank for x in gauge_output.most_critical(list(gs), cap)] == [x.rank for x in gauge_output.most_critical(gs, cap)])
+        [x.rank for x in gauge_output.most_critical(list(gs), cap)] ==
+        [x.rank for x in gauge_output.most_critical(gs, cap)])
 print("gauges.lyrdb capped at %d a type: %d items, %s" % (cap, n, "the most critical" if same else "WRONG"))
 ok = ok and same
 
@@ -125,7 +126,8 @@ records = pya.Layout()
 records.dbu = ly.dbu
 rtop = records.create_cell("TOP")
 ri = gauge_output.add_layer(records, rtop, list(gs), L, D)
-same = got == want and Counter(str(sh) for sh in rtop.shapes(ri).each()) == Counter(str(sh) for sh in top.shapes(index).each())
+same = got == want and (Counter(str(sh) for sh in rtop.shapes(ri).each()) ==
+                        Counter(str(sh) for sh in top.shapes(index).each()))
 print("gauge layer: %d shapes for %d gauges, %s" % (sum(got.values()), len(gs), "identical" if same else "DIFFERENT"))
 ok = ok and same
 

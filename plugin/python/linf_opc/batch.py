@@ -212,7 +212,7 @@ def report_max(args):
 
 def write_gauges(inp, result, gauges, args, window=None):
     t0 = time.perf_counter()
-    if not (gauges is result.gauges and getattr(result, "csv_path", None) == inp.file("gauges.csv")):
+    if not (gauges is result.gauges and result.csv_path == inp.file("gauges.csv")):  # else the core wrote it
         gauge_output.write_csv(gauges, inp.file("gauges.csv"), inp.dbu)
     cap = report_max(args)
     in_report = gauge_output.write_report(gauges, inp.dbu, inp.cell.name, inp.path, inp.file("gauges.lyrdb"), cap)

@@ -44,8 +44,9 @@ def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=
     same for every tile size; tiles bound the memory the builder holds at once.
     csv_path: the core also writes voronoi.csv there (micrometres, `dbu`).
     draw_layer: a layer number: the core also writes the pieces as GDSII for output.add_layers
-    (datatypes 200 + kind; one cell named draw_cell). with_pieces=False: no Python object per piece (a full layer has
-    tens of millions of them): Diagram.pieces is None, n_pieces and counts() remain."""
+    (datatypes 200 + kind; one cell named draw_cell).
+    with_pieces=False: no Python object per piece (a full layer has tens of millions of them):
+    Diagram.pieces is None, n_pieces and counts() remain."""
     t0 = time.perf_counter()
     gds = drawing.temporary() if draw_layer is not None else None
     try:
