@@ -205,15 +205,19 @@ DiagramOptions options(bool check, int pairs, int threads, double tile = 0) {
   return o;
 }
 
-// The files written while the core holds the diagram: voronoi.csv, and the pieces as GDSII for
-// the editor to read (`gds_layer`: the input's layer number, datatypes 200 + kind).
+// What is taken from the diagram while the core holds it: the pieces per kind, voronoi.csv, and
+// the pieces as GDSII for the editor to read (`gds_layer`: the input's layer number, datatypes
+// 200 + kind).
 struct Files {
   std::string csv, gds;
   int gds_layer = 0;
   double dbu = 1.0;
   std::string gds_cell;
   DrawCounts drawn{};
+  DrawCounts counts{};  // pieces per kind, counted in C++: tens of millions on a layer
+
   void write(Diagram& d) {
+    for (const Piece& p : d.pieces) ++counts[std::size_t(p.kind)];
     if (!csv.empty()) write_pieces_csv(d, dbu, csv);
     if (!gds.empty()) {
       GdsLayers L;
@@ -222,11 +226,6 @@ struct Files {
       L.cell = gds_cell;
       drawn = write_pieces_gds(d, L, gds);
     }
-  }
-  DrawCounts counts{};  // pieces per kind
-
-  void count(const Diagram& d) {
-    for (const Piece& p : d.pieces) ++counts[std::size_t(p.kind)];  // in C++: tens of millions on a layer
   }
   void report(py::dict& d) const {
     d["counts"] = counts_dict(counts);
@@ -267,7 +266,6 @@ PYBIND11_MODULE(linf_opc_core, m) {
           py::gil_scoped_release unlocked;
           r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
           files.write(r.diagram);
-          files.count(r.diagram);
         }
         py::dict d = with_pieces ? to_python(r) : to_python_summary(r);
         if (!with_pieces) d["pieces"] = r.diagram.pieces.size();
@@ -305,7 +303,6 @@ PYBIND11_MODULE(linf_opc_core, m) {
           py::gil_scoped_release unlocked;
           r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
           files.write(r.diagram);
-          files.count(r.diagram);
         }
         py::dict d = with_pieces ? to_python(r) : to_python_summary(r);
         files.report(d);

@@ -48,13 +48,9 @@ def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=
     with_pieces=False: no Python object per piece (a full layer has tens of millions of them):
     Diagram.pieces is None, n_pieces and counts() remain."""
     t0 = time.perf_counter()
-    gds = drawing.temporary() if draw_layer is not None else None
-    try:
-        raw = core.voronoi_polygons(core_input(polygons), check, check_pairs, tile=tile, csv=csv_path or "", dbu=dbu,
-                                    pieces=with_pieces, gds=gds or "", gds_layer=draw_layer or 0,
-                                    gds_cell=draw_cell)
-    except BaseException:
-        if gds:
-            drawing.remove(gds)
-        raise
+    raw, gds = drawing.drawn_by(
+        lambda gds: core.voronoi_polygons(core_input(polygons), check, check_pairs, tile=tile, csv=csv_path or "",
+                                          dbu=dbu, pieces=with_pieces, gds=gds, gds_layer=draw_layer or 0,
+                                          gds_cell=draw_cell),
+        draw_layer is not None)
     return Diagram(raw, time.perf_counter() - t0, csv_path, gds)

@@ -18,3 +18,15 @@ def remove(path):
         os.remove(path)
     except OSError:
         pass
+
+
+def drawn_by(call, draw):
+    """call(path): path a fresh temporary file when `draw`, else "" (nothing to draw). The file
+    is removed if the call fails; else it is the caller's. Returns (result, path or None)."""
+    path = temporary() if draw else None
+    try:
+        return call(path or ""), path
+    except BaseException:
+        if path:
+            remove(path)
+        raise

@@ -71,20 +71,13 @@ def most_critical(gauges, max_per_type):
     """The first max_per_type gauges of each type, in rank order (all if max_per_type is 0)."""
     if not max_per_type:
         return gauges
-    if isinstance(gauges, GaugeTable):
-        picked, seen = [], [0] * len(TYPES)
-        for i, k in enumerate(gauges.type_indices()):
-            if seen[k] < max_per_type:
-                seen[k] += 1
-                picked.append(i)
-        return [gauges[i] for i in picked] if len(picked) < len(gauges) else gauges
-    seen = dict.fromkeys(TYPES, 0)
-    out = []
-    for g in gauges:
-        if seen[g.type] < max_per_type:
-            seen[g.type] += 1
-            out.append(g)
-    return out
+    types = gauges.type_indices() if isinstance(gauges, GaugeTable) else [TYPES.index(g.type) for g in gauges]
+    picked, seen = [], [0] * len(TYPES)
+    for i, k in enumerate(types):
+        if seen[k] < max_per_type:
+            seen[k] += 1
+            picked.append(i)
+    return gauges if len(picked) == len(gauges) else [gauges[i] for i in picked]
 
 
 def report(gauges, dbu, cell_name, source="", rdb=None, max_per_type=REPORT_MAX_PER_TYPE):

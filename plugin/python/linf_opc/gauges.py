@@ -78,6 +78,10 @@ class GaugeTable(Sequence):
         """(cx, cy): the gauge points' coordinates, two sequences indexed by gauge."""
         return self._reals[4::10], self._reals[5::10]
 
+    def scores(self):
+        """The score of each gauge, rank order."""
+        return self._reals[7::10]
+
     def type_indices(self):
         """The type of each gauge as its index in TYPES, rank order."""
         return self._ints[12::13]
@@ -109,7 +113,7 @@ class Gauges:
     def score_ranges(self):
         """{type: (lowest score, highest score)} in DBU, types that have gauges only."""
         types = array("i", self.gauges.type_indices())
-        scores = self.gauges._reals[7::10]
+        scores = self.gauges.scores()
         r = {}
         for k, t in enumerate(TYPES):
             of_type = list(compress(scores, (c == k for c in types)))
@@ -128,15 +132,11 @@ def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, d
     `dbu`; Gauges.csv_path)."""
     from .diagram import Diagram
     t0 = time.perf_counter()
-    gds = drawing.temporary() if draw_layer is not None else None
-    try:
-        raw = core.gauges_polygons(core_input(polygons), check, 2000, 0, tooth_fraction, space_limit_widths, False,
-                                   with_paths, tile=tile, csv=csv_path or "", dbu=dbu, gds=gds or "",
-                                   gds_layer=draw_layer or 0, gds_cell=draw_cell, gauges_csv=gauges_csv or "")
-    except BaseException:
-        if gds:
-            drawing.remove(gds)
-        raise
+    raw, gds = drawing.drawn_by(
+        lambda gds: core.gauges_polygons(core_input(polygons), check, 2000, 0, tooth_fraction, space_limit_widths,
+                                         False, with_paths, tile=tile, csv=csv_path or "", dbu=dbu, gds=gds,
+                                         gds_layer=draw_layer or 0, gds_cell=draw_cell, gauges_csv=gauges_csv or ""),
+        draw_layer is not None)
     out = Gauges(raw, time.perf_counter() - t0)
     out.csv_path = gauges_csv  # where the core already wrote gauges.csv, if it did
     if gds:
