@@ -196,6 +196,34 @@ Doubles doubles_of(const py::buffer& b, std::size_t group, const char* name) {
   return d;
 }
 
+// One column of values read in place, possibly strided (a memoryview slice such as
+// reals[4::10] of the gauge table): the selection reads millions of gauges without a copy.
+template <class T>
+struct Column {
+  py::buffer_info info;
+  const char* data = nullptr;
+  py::ssize_t stride = 0;
+  std::size_t n = 0;
+  std::size_t size() const { return n; }
+  T operator[](std::size_t i) const {
+    T v;
+    std::memcpy(&v, data + py::ssize_t(i) * stride, sizeof v);
+    return v;
+  }
+};
+
+template <class T>
+Column<T> column_of(const py::buffer& b, const char* name) {
+  Column<T> c{b.request()};
+  if (c.info.format != py::format_descriptor<T>::format() || c.info.ndim != 1)
+    throw py::value_error(std::string(name) + " must be a one-dimensional buffer of " +
+                          (std::is_same_v<T, double> ? "doubles, array('d')" : "int32, array('i')"));
+  c.data = static_cast<const char*>(c.info.ptr);
+  c.stride = c.info.strides[0];
+  c.n = std::size_t(c.info.shape[0]);
+  return c;
+}
+
 DiagramOptions options(bool check, int pairs, int threads, double tile = 0) {
   DiagramOptions o;
   o.check = check;
@@ -376,15 +404,19 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "select_windows",
-      [](py::buffer spots, py::buffer markers, const std::vector<double>& sides, const std::vector<std::string>& modes,
-         bool brute) {
-        // Flat arrays of doubles (array('d')): tens of thousands of gauges cross without
-        // building a Python object per value.
-        const Doubles sv = doubles_of(spots, 4, "spots"), mv = doubles_of(markers, 4, "markers");
+      [](py::buffer x, py::buffer y, py::buffer types, py::buffer norms, py::buffer markers,
+         const std::vector<double>& sides, const std::vector<std::string>& modes, bool brute, bool with_failed) {
+        // Columns read in place (the gauge table's strided views): a full layer has millions
+        // of gauges, and neither a Python object nor a second flat copy per gauge.
+        const Column<double> xs = column_of<double>(x, "x"), ys = column_of<double>(y, "y");
+        const Column<double> ns = column_of<double>(norms, "norms");
+        const Column<std::int32_t> ts = column_of<std::int32_t>(types, "types");
+        if (ys.size() != xs.size() || ts.size() != xs.size() || ns.size() != xs.size())
+          throw py::value_error("x, y, types and norms must have one value per gauge");
+        const Doubles mv = doubles_of(markers, 4, "markers");
         std::vector<Spot> sp;
-        sp.reserve(sv.size() / 4);
-        for (std::size_t i = 0; i < sv.size() / 4; ++i)
-          sp.push_back({{sv[4 * i], sv[4 * i + 1]}, std::int32_t(i), std::int32_t(sv[4 * i + 2]), sv[4 * i + 3]});
+        sp.reserve(xs.size());
+        for (std::size_t i = 0; i < xs.size(); ++i) sp.push_back({{xs[i], ys[i]}, std::int32_t(i), ts[i], ns[i]});
         auto tally = [](const Tally& t) {
           py::list out;
           for (int k = 0; k < kTypes; ++k) out.append(py::make_tuple(t.n[k], t.lo[k], t.hi[k]));
@@ -415,7 +447,9 @@ PYBIND11_MODULE(linf_opc_core, m) {
             r["windows"] = windows;
             r["used"] = s.used;
             r["failed"] = s.failed.size();
-            r["failed_spots"] = bytes_of(s.failed);  // int32 each: a layer can have millions
+            // int32 each, and only when asked: on a large layer most gauges fail, and a study's
+            // twelve runs would hold them twelve times.
+            r["failed_spots"] = with_failed ? py::object(bytes_of(s.failed)) : py::object(py::none());
             r["used_by_type"] = tally(s.used_by_type);
             r["failed_by_type"] = tally(s.failed_by_type);
             r["redundant"] = s.redundant;
@@ -427,14 +461,16 @@ PYBIND11_MODULE(linf_opc_core, m) {
         }
         return out;
       },
-      py::arg("spots"), py::arg("markers"), py::arg("sides"), py::arg("modes"), py::arg("brute") = false,
-      "Pattern windows for every mode and side: spots = array('d') of x, y, type index 0-4, normalised score\n"
-      "per gauge in rank order; markers = array('d') of x1, y1, x2, y2 per marker; sides the window sides, modes among A (centre strictly inside), B (marker inside),\n"
-      "C (overlap). Returns, modes outer and sides inner, [{'mode', 'side', 'windows': [(x1, y1, x2, y2,\n"
-      "spot index, [markers newly covered])], 'used' (spot indices), 'failed' (count), 'failed_spots'\n"
-      "(spot indices as int32 bytes), 'used_by_type',\n"
-      "'failed_by_type' ([(count, lowest, highest normalised score)] per type index), 'redundant',\n"
-      "'traversed', 'covered', 'seconds'}]. brute=True: the brute-force oracle.");
+      py::arg("x"), py::arg("y"), py::arg("types"), py::arg("norms"), py::arg("markers"), py::arg("sides"),
+      py::arg("modes"), py::arg("brute") = false, py::arg("failed") = true,
+      "Pattern windows for every mode and side. Gauges in rank order as four columns (one-dimensional buffers,\n"
+      "strided views allowed): x, y (doubles), types (int32 type index 0-4), norms (normalised score, doubles);\n"
+      "markers = array('d') of x1, y1, x2, y2 per marker; sides the window sides, modes among A (centre strictly\n"
+      "inside), B (marker inside), C (overlap). Returns, modes outer and sides inner, [{'mode', 'side', 'windows':\n"
+      "[(x1, y1, x2, y2, spot index, [markers newly covered])], 'used' (spot indices), 'failed' (count),\n"
+      "'failed_spots' (spot indices as int32 bytes; None unless failed=True), 'used_by_type', 'failed_by_type'\n"
+      "([(count, lowest, highest normalised score)] per type index), 'redundant', 'traversed', 'covered',\n"
+      "'seconds'}]. brute=True: the brute-force oracle.");
 
   m.def(
       "free_windows",

@@ -34,8 +34,11 @@ class GaugeTableColumns(unittest.TestCase):
 
     def test_spots_match_the_rows(self):
         index = {t: i for i, t in enumerate(gauges.TYPES)}
-        expected = array("d", [v for g in self.rows for v in (g.cx, g.cy, index[g.type], g.norm_score)])
-        self.assertEqual(self.table.spots(), expected)
+        x, y, t, n = self.table.spots()
+        self.assertEqual(list(x), [g.cx for g in self.rows])
+        self.assertEqual(list(y), [g.cy for g in self.rows])
+        self.assertEqual(list(t), [index[g.type] for g in self.rows])
+        self.assertEqual(list(n), [g.norm_score for g in self.rows])
 
     def test_cd_extension_and_pitch_match_the_rows(self):
         for t in ("internal", "external", "T"):
@@ -51,6 +54,11 @@ class GaugeTableColumns(unittest.TestCase):
         b = selection.study(self.rows, markers, pitch, sizes=(5, 7), modes=("A", "C"))
         for key in a.runs:
             self.assertEqual(a.runs[key].windows, b.runs[key].windows)
+            # The failed gauges, made again on demand, are the ones the study counted.
+            failed = list(a.runs[key].failed_spots)
+            self.assertEqual(len(failed), a.runs[key].n_failed)
+            self.assertEqual(failed, list(b.runs[key].failed_spots))
+            self.assertGreater(len(failed), 0)
 
     def test_flat_polygons_give_the_same_gauges(self):
         flat = Polygons.of(self.polys)

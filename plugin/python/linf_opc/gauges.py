@@ -65,14 +65,9 @@ class GaugeTable(Sequence):
 
     # Whole columns, made without a Python object per gauge (the selection's inputs).
     def spots(self):
-        """array('d'): cx, cy, type index (in TYPES), norm_score per gauge, rank order."""
-        out = array("d", bytes(32 * self._n))
-        m = memoryview(out)
-        m[0::4] = self._reals[4::10]
-        m[1::4] = self._reals[5::10]
-        m[2::4] = memoryview(array("d", self._ints[12::13]))
-        m[3::4] = self._reals[8::10]
-        return out
+        """(x, y, type index in TYPES, norm_score): the selection's columns, rank order, as views
+        into the table (no copy)."""
+        return self._reals[4::10], self._reals[5::10], self._ints[12::13], self._reals[8::10]
 
     def centres(self):
         """(cx, cy): the gauge points' coordinates, two sequences indexed by gauge."""

@@ -63,12 +63,13 @@ def similarity(c1, c2):
 
 
 class Run:
-    def __init__(self, mode, size, side, raw, gauges, n_markers, types):
+    def __init__(self, mode, size, side, raw, gauges, n_markers, types, failed_of=None):
         self.mode, self.size, self.side = mode, size, side
         self.windows = raw["windows"]  # (x1, y1, x2, y2, gauge index, [markers newly covered])
         self.used = [gauges[i] for i in raw["used"]]
         self.n_failed = raw["failed"]
-        self.failed_spots = memoryview(raw["failed_spots"]).cast("i")  # gauge indices
+        self._failed_spots = raw["failed_spots"]
+        self._failed_of = failed_of
         self.used_by_type = raw["used_by_type"]
         self.failed_by_type = raw["failed_by_type"]
         self.redundant = raw["redundant"]
@@ -77,6 +78,14 @@ class Run:
         self.seconds = raw["seconds"]
         self.n_markers = n_markers
         self.types = types
+
+    @property
+    def failed_spots(self):
+        """The failed gauges' indices (int32). On a large layer most gauges fail, so a study
+        keeps only their count and this run's selection is made again when they are asked for."""
+        if self._failed_spots is None:
+            self._failed_spots = self._failed_of(self.mode, self.side)
+        return memoryview(self._failed_spots).cast("i")
 
     def row(self, dbu):
         """The columns of Tables 5.2-5.4 (T in seconds, the core's selection time)."""
@@ -117,16 +126,21 @@ def study(gauges, markers, pitch, sizes=SIZES, modes=MODES, types=("internal", "
     sizes, modes = list(sizes), list(modes)
     t0 = time.perf_counter()
     index = {t: i for i, t in enumerate(types)}
-    if hasattr(gauges, "spots") and tuple(types) == gauge_types:  # a GaugeTable: flat columns
-        spots = gauges.spots()
+    if hasattr(gauges, "spots") and tuple(types) == gauge_types:  # a GaugeTable: its columns in place
+        columns = gauges.spots()
     else:
-        spots = array("d", [v for g in gauges for v in (g.cx, g.cy, index[g.type], g.norm_score)])
+        columns = (array("d", (g.cx for g in gauges)), array("d", (g.cy for g in gauges)),
+                   array("i", (index[g.type] for g in gauges)), array("d", (g.norm_score for g in gauges)))
     boxes = array("d", [v for b in markers for v in b])
-    raw = core.select_windows(spots, boxes, [k * pitch for k in sizes], list(modes))
+
+    def failed_of(mode, side):
+        return core.select_windows(*columns, boxes, [side], [mode], failed=True)[0]["failed_spots"]
+
+    raw = core.select_windows(*columns, boxes, [k * pitch for k in sizes], list(modes), failed=False)
     runs = {}
     for i, r in enumerate(raw):
         m, k = modes[i // len(sizes)], sizes[i % len(sizes)]
-        runs[(m, k)] = Run(m, k, r["side"], r, gauges, len(markers), types)
+        runs[(m, k)] = Run(m, k, r["side"], r, gauges, len(markers), types, failed_of)
     centres = [((b[0] + b[2]) / 2, (b[1] + b[3]) / 2) for b in markers]
     heuristic = {}
     for k in sizes:
