@@ -9,7 +9,8 @@
 # - gauges.lyrdb: written directly, loaded and saved by KLayout, the same bytes as the report
 #   database filled through KLayout's API and saved;
 #   capped at N gauges a type, it holds the N most critical of each;
-# - the gauge layer drawn through GDSII: each gauge's line rounded by Python and its label.
+# - the gauge layer drawn through GDSII: each gauge's line rounded by Python and its label;
+# - output.save: no OASIS shape compaction above its shape limit, the same shapes.
 import filecmp
 import gc
 import os
@@ -129,6 +130,30 @@ ri = gauge_output.add_layer(records, rtop, list(gs), L, D)
 same = got == want and (Counter(str(sh) for sh in rtop.shapes(ri).each()) ==
                         Counter(str(sh) for sh in top.shapes(index).each()))
 print("gauge layer: %d shapes for %d gauges, %s" % (sum(got.values()), len(gs), "identical" if same else "DIFFERENT"))
+ok = ok and same
+
+# output.save: a layout above COMPACT_MAX_SHAPES is written without OASIS shape compaction
+# (which holds every shape while it writes), with the same shapes. A row of equal boxes at a
+# fixed pitch is what compaction turns into one array: the file is far smaller with it.
+row = pya.Layout()
+rtop = row.create_cell("TOP")
+rl = row.insert_layer(pya.LayerInfo(1, 0))
+for i in range(1000):
+    rtop.shapes(rl).insert(pya.Box(100 * i, 0, 100 * i + 50, 50))
+files = {}
+for limit in (output.shape_count(row), output.shape_count(row) - 1):
+    output.COMPACT_MAX_SHAPES = limit
+    files[limit] = os.path.join(g["work"], "row_%d.oas" % limit)
+    output.save(row, files[limit])
+back = []
+for f in files.values():
+    r = pya.Layout()
+    r.read(f)
+    back.append(sorted(str(s.box) for s in r.top_cell().shapes(r.layer(1, 0)).each()))
+compact, plain = (os.path.getsize(f) for f in files.values())
+same = back[0] == back[1] == sorted(str(s.box) for s in rtop.shapes(rl).each()) and compact * 4 < plain
+print("save: 1000 boxes in %d bytes with compaction, %d without it above the limit; same boxes: %s"
+      % (compact, plain, same))
 ok = ok and same
 
 path = d.gds_path

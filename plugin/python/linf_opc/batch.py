@@ -181,7 +181,7 @@ def write_voronoi(inp, diagram):
     output.write_csv(diagram, inp.file("voronoi.csv"), inp.dbu)
     res, top = inp.result_layout()
     drawn = output.add_layers(res, top, diagram, inp.layer, inp.datatype, direct=True)
-    res.write(inp.file("voronoi.oas"))
+    output.save(res, inp.file("voronoi.oas"))
     s = output.summary(diagram, inp.dbu, input=inp.path, cell=inp.cell.name, layer=inp.name,
                        polygons=len(inp.polygons), drawn=drawn)
     s["seconds"].update(read=inp.t_read, write=time.perf_counter() - t0)
@@ -218,7 +218,7 @@ def write_gauges(inp, result, gauges, args, window=None):
     in_report = gauge_output.write_report(gauges, inp.dbu, inp.cell.name, inp.path, inp.file("gauges.lyrdb"), cap)
     res, top = inp.result_layout()
     gauge_output.add_layer(res, top, gauges, inp.layer, inp.datatype, direct=True)
-    res.write(inp.file("gauges.oas"))
+    output.save(res, inp.file("gauges.oas"))
     s = gauge_output.summary(result, inp.dbu)
     s.update(input=inp.path, cell=inp.cell.name, layer=inp.name, polygons=len(inp.polygons),
              dbu=round(inp.dbu, 12), written=len(gauges), report_items=in_report, report_max_per_type=cap)
@@ -364,7 +364,7 @@ def write_selection(inp, sel, rdb):
     selection_output.report(sel.study, sel.gauges, inp.dbu, inp.cell.name, rdb, sel.markers)
     res, top = inp.result_layout()
     selection_output.add_layer(res, top, sel.chosen, inp.layer, inp.datatype)
-    res.write(inp.file("windows.oas"))
+    output.save(res, inp.file("windows.oas"))
     stats = selection_output.stats(sel.study, inp.dbu, sel.chosen, sel.similarity)
     stats.update(input=inp.path, cell=inp.cell.name, layer=inp.name, gauges=len(sel.gauges), max_norm=sel.max_norm,
                  marker_source=sel.markers.summary(), pitch_source="given" if sel.pitch_given else "estimated")
@@ -528,7 +528,7 @@ def cmd_farthest(args):
         top.shapes(li).insert(it.shape().polygon.transformed(it.trans()))
         it.next()
     farthest_stage.add_layers(res, top, result, clip, layer)
-    res.write(out.file("farthest.oas"))
+    output.save(res, out.file("farthest.oas"))
     s = farthest_stage.summary(result, ly.dbu, sites)
     s.update(input=os.path.abspath(args["input"]), cell=cell.name, layer="%d/%d" % (layer, datatype),
              seconds=seconds)

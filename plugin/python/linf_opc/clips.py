@@ -9,6 +9,7 @@ Cells are named SET_rRANK_TYPE_SCORE, e.g. CAL_r000042_sandwich_0p0245 (score in
 """
 import pya
 
+from . import output
 from .gauge_output import DATATYPE as GAUGE_DATATYPE
 from .selection_output import DATATYPE as WINDOW_DATATYPE
 
@@ -62,5 +63,5 @@ def write_library(path, which, patterns, region, layer, datatype, dbu):
         for m in p.markers:
             cell.shapes(lm).insert(pya.DBox(m[0] * dbu, m[1] * dbu, m[2] * dbu, m[3] * dbu))
     lib.end_changes()
-    lib.write(path)
+    output.save(lib, path)
     return names

@@ -1,5 +1,7 @@
 """Writing gauges: gauges.csv (micrometres), a gauge layer, a report database for the marker browser."""
 import csv
+from array import array
+from collections.abc import Sequence
 from xml.sax import saxutils
 
 import pya
@@ -67,17 +69,30 @@ def add_layer(layout, cell, gauges, layer, datatype, direct=False):
 REPORT_MAX_PER_TYPE = 100000
 
 
+class Subset(Sequence):
+    """Some items of a sequence, by index, each made on access: half a million Gauge records
+    in a list would cost hundreds of MB on a full layer."""
+    def __init__(self, items, indices):
+        self._items, self._indices = items, indices
+
+    def __len__(self):
+        return len(self._indices)
+
+    def __getitem__(self, i):
+        return self._items[self._indices[i]]
+
+
 def most_critical(gauges, max_per_type):
     """The first max_per_type gauges of each type, in rank order (all if max_per_type is 0)."""
     if not max_per_type:
         return gauges
     types = gauges.type_indices() if isinstance(gauges, GaugeTable) else [TYPES.index(g.type) for g in gauges]
-    picked, seen = [], [0] * len(TYPES)
+    picked, seen = array("i"), [0] * len(TYPES)
     for i, k in enumerate(types):
         if seen[k] < max_per_type:
             seen[k] += 1
             picked.append(i)
-    return gauges if len(picked) == len(gauges) else [gauges[i] for i in picked]
+    return gauges if len(picked) == len(gauges) else Subset(gauges, picked)
 
 
 def report(gauges, dbu, cell_name, source="", rdb=None, max_per_type=REPORT_MAX_PER_TYPE):

@@ -18,6 +18,26 @@ def diagram_layer_info(layer, datatype, kind):
     return pya.LayerInfo(layer, DATATYPE_BASE + KINDS.index(kind), "voronoi_%s (%d/%d)" % (kind, layer, datatype))
 
 
+# KLayout's OASIS shape compaction (regular arrays found among repeated shapes) keeps a table
+# of every shape while it writes: about 100 bytes a shape, 1 GB more at the peak on a layer of
+# a million wires. Larger layouts are written without it (files about 5% larger there).
+COMPACT_MAX_SHAPES = 1000000
+
+
+def shape_count(layout):
+    return sum(cell.shapes(li).size() for cell in layout.each_cell() for li in layout.layer_indexes())
+
+
+def save(layout, path):
+    """Writes a result layout (format from the file name), without shape compaction above
+    COMPACT_MAX_SHAPES shapes."""
+    opts = pya.SaveLayoutOptions()
+    opts.set_format_from_filename(path)
+    if shape_count(layout) > COMPACT_MAX_SHAPES:
+        opts.oasis_compression_level = 0
+    layout.write(path, opts)
+
+
 def write_csv(diagram, path, dbu):
     """The pieces as CSV (the core's write_pieces_csv writes the same bytes, faster: batch runs
     ask the core to write it while it holds the diagram)."""
