@@ -9,6 +9,7 @@
 # - gauges.lyrdb: written directly, loaded and saved by KLayout, the same bytes as the report
 #   database filled through KLayout's API and saved;
 #   capped at N gauges a type, it holds the N most critical of each;
+# - flow.lyrdb joined as text from gauges.lyrdb and the selection's part: the bytes KLayout saves;
 # - the gauge layer drawn through GDSII: each gauge's line rounded by Python and its label;
 # - output.save: no OASIS shape compaction above its shape limit, the same shapes.
 import filecmp
@@ -23,7 +24,8 @@ sys.path.insert(0, os.path.join(repo, "plugin", "python"))
 
 import pya  # noqa: E402
 
-from linf_opc import diagram, gauge_output, gauges, layout, output  # noqa: E402
+from linf_opc import diagram, gauge_output, gauges, layout, output, report_db, selection  # noqa: E402
+from linf_opc import markers as marker_io, selection_output, split as split_stage  # noqa: E402
 
 g = globals()
 os.makedirs(g["work"], exist_ok=True)
@@ -106,6 +108,27 @@ same = (got_ranks == want_ranks and n == sum(map(len, want_ranks.values())) and
         [x.rank for x in gauge_output.most_critical(list(gs), cap)] ==
         [x.rank for x in gauge_output.most_critical(gs, cap)])
 print("gauges.lyrdb capped at %d a type: %d items, %s" % (cap, n, "the most critical" if same else "WRONG"))
+ok = ok and same
+
+# flow.lyrdb joined as text (report_db.merge): the same bytes as KLayout saves after loading
+# gauges.lyrdb and adding a selection's and a split's categories and items through its API.
+# Markers around every 40th gauge; the selection and the split of the smallest windows.
+markers = [(x.cx - 5, x.cy - 5, x.cx + 5, x.cy + 5) for x in list(gs)[::40]]
+study = selection.study(gs, markers, selection.pitch_of(gs), sizes=(5, 7), modes=("A", "C"))
+split = split_stage.stratified(split_stage.patterns_of(study.runs[("A", 5)], gs, markers))
+whole, parts, joined = (os.path.join(g["work"], n) for n in ("whole.lyrdb", "parts.lyrdb", "joined.lyrdb"))
+for path, base in ((whole, fast), (parts, None)):
+    rdb = pya.ReportDatabase("flow")
+    if base:
+        rdb.load(base)
+    rdb.generator = "linf_opc flow"
+    selection_output.report(study, gs, ly.dbu, "TOP", rdb, marker_io.Markers(markers, "test"))
+    selection_output.report_split(split, ly.dbu, "TOP", rdb)
+    rdb.save(path)
+report_db.merge(fast, parts, joined, "linf_opc flow")
+same = filecmp.cmp(whole, joined, shallow=False) and len(split.patterns) > 0
+print("flow.lyrdb joined as text (%d gauges, %d patterns) %s KLayout's" % (len(gs), len(split.patterns),
+                                                                           "is" if same else "DIFFERS FROM"))
 ok = ok and same
 
 index = gauge_output.add_layer(res, top, gs, L, D)

@@ -33,6 +33,7 @@ from . import layout as layer_io
 from . import markers as marker_io
 from . import output
 from . import report as html_report
+from . import report_db
 from . import selection as selection_stage
 from . import selection_output
 from . import split as split_stage
@@ -461,7 +462,7 @@ def cmd_split(args):
 def flow(inp, args, progress=None):
     """voronoi -> gauges -> select -> split on `inp`, the diagram built once; writes every
     output into inp.dir. `progress(stage)` is called between stages (the editor's progress bar,
-    whose cancel raises). Returns (summary line, rdb, chosen selection run)."""
+    whose cancel raises). Returns (summary line, flow.lyrdb's name in inp.dir, chosen selection run)."""
     step = progress or (lambda stage: None)
     step("diagram and gauges")
     result = gauge_stage.compute(inp.polygons, draw_layer=inp.layer, tile=inp.tile, csv_path=inp.file("voronoi.csv"),
@@ -473,14 +474,15 @@ def flow(inp, args, progress=None):
     sel = Selected(inp, args, result)
     step("split")
     split = split_of(args, sel)
-    # flow.lyrdb: the gauges' categories, then the selection's and the split's (loaded only now:
-    # on a full layer it holds hundreds of thousands of items, which the selection can do without)
+    # flow.lyrdb: gauges.lyrdb followed by the selection's and the split's categories and items,
+    # joined as text (report_db.py): the gauges are not loaded into KLayout only to be saved again
     rdb = new_rdb(inp, "linf_opc flow")
-    rdb.load(inp.file("gauges.lyrdb"))
-    rdb.generator = "linf_opc flow"
     stats = write_selection(inp, sel, rdb)
     ss = write_split(inp, split, rdb)
-    rdb.save(inp.file("flow.lyrdb"))
+    parts = inp.file("flow_parts.lyrdb")
+    rdb.save(parts)
+    report_db.merge(inp.file("gauges.lyrdb"), parts, inp.file("flow.lyrdb"), "linf_opc flow")
+    os.remove(parts)
     output.write_json({"voronoi": sv, "gauges": sg, "select": {k: stats[k] for k in ("pitch_um", "markers", "chosen")},
                        "split": {k: ss[k] for k in ("mode", "patterns", "counts")}}, inp.file("summary.json"))
     row = sel.chosen.row(inp.dbu)
@@ -492,7 +494,7 @@ def flow(inp, args, progress=None):
                c["internal"], c["external"], c["sandwich"], c["comb"], c["T"], sel.chosen.covered,
                len(sel.markers.boxes), sel.chosen.mode, row["W_s"], len(sel.chosen.windows),
                ss["counts"]["calibration"], ss["counts"]["verification"], os.path.abspath(inp.dir)))
-    return line, rdb, sel.chosen
+    return line, "flow.lyrdb", sel.chosen
 
 
 def cmd_flow(args):

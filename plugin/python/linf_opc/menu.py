@@ -243,10 +243,12 @@ def run_flow():
             progress.format = stage
             progress.inc()
         try:
-            line, rdb, chosen = batch.flow(inp, args, step)
+            line, rdb_name, chosen = batch.flow(inp, args, step)
             inp.out.commit()
         finally:
             inp.out.abort()  # no-op after a commit; a failed run leaves no partial files
+        rdb = pya.ReportDatabase("flow")
+        rdb.load(os.path.join(inp.dir, rdb_name))
         _undoable(view, ly, "OPC pattern flow on %s" % values["layer"],
                   lambda: selection_output.add_layer(ly, cv.cell, chosen, l, d))
         index = view.add_rdb(rdb)

@@ -1,0 +1,87 @@
+"""One report database from two saved ones, as text: flow.lyrdb is gauges.lyrdb (written directly,
+up to half a million items on a full layer) followed by the selection's and the split's
+categories and items (a few thousand, filled through KLayout's API). Loading the gauges into
+KLayout only to save them again took a fifth of a mid-size flow.
+
+Both files are in the layout KLayout saves (and gauge_output.write_report imitates): header,
+<tags>, <categories>, <cells>, <items>, one element per line. The result is what KLayout saves
+after loading the first file and adding the second's contents through its API (tested): the
+first's tags (declared, then those its items' values name, "[#name]"), then the second's new
+ones; the categories, then the items, of the first and then of the second; the first's cells
+(both name the same single top cell). The first file's items must all name the same values
+(as write_report's do): its tags are taken from its first item, and the rest is copied as bytes."""
+import re
+
+_SECTIONS = ("tags", "categories", "cells", "items")
+_ITEMS_END = b" </items>\n"
+_TAIL = _ITEMS_END + b"</report-database>\n"
+_VALUE_TAG = re.compile(rb"<value>\[#?([^\]]+)\]")
+_TAG = re.compile(rb"  <tag>\n   <name>([^<]*)</name>\n.*?  </tag>\n", re.S)
+
+
+def _blocks(f):
+    """Reads the header and the tags, categories and cells blocks from an open file, and the
+    items' opening line: (header, {section: inner bytes})."""
+    head, inner, name, lines = b"", {}, None, []
+    for line in f:
+        if name is None:
+            opening = next((s for s in _SECTIONS if line == b" <%s>\n" % s.encode()), None)
+            if opening is None:
+                head += line if not inner else b""
+                continue
+            name, lines = opening, []
+            if name == "items":
+                return head, inner
+        elif line == b" </%s>\n" % name.encode():
+            inner[name], name = b"".join(lines), None
+        else:
+            lines.append(line)
+    raise ValueError("not a report database as KLayout saves it: %s" % f.name)
+
+
+def _tags(inner):
+    return [(m.group(1), m.group(0)) for m in _TAG.finditer(inner)]
+
+
+def merge(first, second, out, generator):
+    """Writes `out`: the report database `first` followed by `second`'s contents (paths), with
+    `generator`."""
+    with open(second, "rb") as f:
+        _, b = _blocks(f)
+        b_items = f.read()
+    if not b_items.endswith(_TAIL):
+        raise ValueError("not a report database as KLayout saves it: %s" % second)
+    b_items = b_items[:-len(_TAIL)]
+    with open(first, "rb") as f, open(out, "wb") as o:
+        head, a = _blocks(f)
+        start = f.tell()
+        first_item = b""
+        for line in f:
+            first_item += line
+            if line in (b"  </item>\n", _ITEMS_END):
+                break
+        size = f.seek(0, 2)
+        f.seek(size - len(_TAIL))
+        if f.read() != _TAIL:
+            raise ValueError("not a report database as KLayout saves it: %s" % first)
+        head = re.sub(rb" <generator>[^<]*</generator>\n",
+                      lambda m: b" <generator>%s</generator>\n" % generator.encode(), head, 1)
+        tags = _tags(a["tags"])
+        names = [n for n, _ in tags]
+        for n in _VALUE_TAG.findall(first_item):
+            if n not in names:
+                names.append(n)
+                tags.append((n, b"  <tag>\n   <name>%s</name>\n   <description/>\n  </tag>\n" % n))
+        tags += [(n, e) for n, e in _tags(b["tags"]) if n not in names]
+        o.write(head)
+        o.write(b" <tags>\n%s </tags>\n" % b"".join(e for _, e in tags))
+        o.write(b" <categories>\n%s%s </categories>\n" % (a["categories"], b["categories"]))
+        o.write(b" <cells>\n%s </cells>\n <items>\n" % a["cells"])
+        f.seek(start)
+        left = size - len(_TAIL) - start
+        while left > 0:  # the first's items, as they are
+            chunk = f.read(min(left, 1 << 22))
+            o.write(chunk)
+            left -= len(chunk)
+        o.write(b_items)
+        o.write(_TAIL)
