@@ -10,6 +10,7 @@
 #   database filled through KLayout's API and saved;
 #   capped at N gauges a type, it holds the N most critical of each;
 # - flow.lyrdb joined as text from gauges.lyrdb and the selection's part: the bytes KLayout saves;
+#   the selection's part written directly: the bytes of the database filled through the API;
 # - the gauge layer drawn through GDSII: each gauge's line rounded by Python and its label;
 # - output.save: no OASIS shape compaction above its shape limit, the same shapes.
 import filecmp
@@ -122,13 +123,23 @@ for path, base in ((whole, fast), (parts, None)):
     if base:
         rdb.load(base)
     rdb.generator = "linf_opc flow"
-    selection_output.report(study, gs, ly.dbu, "TOP", rdb, marker_io.Markers(markers, "test"))
+    rdb.original_file = g["input"]
+    rdb.top_cell_name = "TOP"
+    selection_output.report(study, gs, ly.dbu, "TOP", rdb, marker_io.Markers(markers, "test <1>"))
     selection_output.report_split(split, ly.dbu, "TOP", rdb)
     rdb.save(path)
 report_db.merge(fast, parts, joined, "linf_opc flow")
 same = filecmp.cmp(whole, joined, shallow=False) and len(split.patterns) > 0
 print("flow.lyrdb joined as text (%d gauges, %d patterns) %s KLayout's" % (len(gs), len(split.patterns),
                                                                            "is" if same else "DIFFERS FROM"))
+ok = ok and same
+# The selection's and the split's part written directly: the bytes the API's database saves.
+direct = os.path.join(g["work"], "direct.lyrdb")
+selection_output.write_report(direct, study, gs, ly.dbu, "TOP", g["input"], "linf_opc flow",
+                              marker_io.Markers(markers, "test <1>"), split)
+same = filecmp.cmp(parts, direct, shallow=False)
+print("selection report written directly (%d windows, %d markers) %s the API's" % (
+    sum(len(r.windows) for r in study.runs.values()), len(markers), "is" if same else "DIFFERS FROM"))
 ok = ok and same
 
 index = gauge_output.add_layer(res, top, gs, L, D)

@@ -358,11 +358,10 @@ class Selected:
         self.result = result
 
 
-def write_selection(inp, sel, rdb):
-    """windows.csv, windows.oas, stats.json, report.html; fills rdb (saved by the caller)."""
+def write_selection(inp, sel):
+    """windows.csv, windows.oas, stats.json, report.html (the report database: write_windows_report)."""
     t0 = time.perf_counter()
     selection_output.write_csv(sel.chosen, sel.gauges, inp.file("windows.csv"), inp.dbu)
-    selection_output.report(sel.study, sel.gauges, inp.dbu, inp.cell.name, rdb, sel.markers)
     res, top = inp.result_layout()
     selection_output.add_layer(res, top, sel.chosen, inp.layer, inp.datatype)
     output.save(res, inp.file("windows.oas"))
@@ -377,12 +376,11 @@ def write_selection(inp, sel, rdb):
     return stats
 
 
-def new_rdb(inp, generator):
-    rdb = pya.ReportDatabase("patterns")
-    rdb.generator = generator
-    rdb.original_file = inp.path
-    rdb.top_cell_name = inp.cell.name
-    return rdb
+def write_windows_report(inp, sel, split, generator, path):
+    """The selection's (and the split's, if given) report database: every run's windows, the
+    markers, the split's patterns."""
+    selection_output.write_report(path, sel.study, sel.gauges, inp.dbu, inp.cell.name, inp.path, generator,
+                                  sel.markers, split)
 
 
 def select_line(sel, dbu, d):
@@ -398,9 +396,8 @@ def select_line(sel, dbu, d):
 def cmd_select(args):
     inp = Input.from_args(args)
     sel = Selected(inp, args, gauge_stage.compute(inp.polygons, tile=inp.tile))
-    rdb = new_rdb(inp, "linf_opc select")
-    write_selection(inp, sel, rdb)
-    rdb.save(inp.file("windows.lyrdb"))
+    write_selection(inp, sel)
+    write_windows_report(inp, sel, None, "linf_opc select", inp.file("windows.lyrdb"))
     return select_line(sel, inp.dbu, inp.dir)
 
 
@@ -428,15 +425,14 @@ def split_of(args, sel):
     raise UsageError("split must be stratified or threshold, not %r" % args.get("split"))
 
 
-def write_split(inp, split, rdb):
-    """The two clip libraries, the two gauge lists, split.json; tags the rdb's split items."""
+def write_split(inp, split):
+    """The two clip libraries, the two gauge lists, split.json."""
     names = {}
     for which in split_stage.SETS:
         members = split.members(which)
         names[which] = clips.write_library(inp.file("%s.oas" % which), which, members, inp.region, inp.layer,
                                            inp.datatype, inp.dbu)
         gauge_output.write_csv([p.gauge for p in members], inp.file("%s_gauges.csv" % which), inp.dbu)
-    selection_output.report_split(split, inp.dbu, inp.cell.name, rdb)
     s = split.summary()
     output.write_json(s, inp.file("split.json"))
     return s
@@ -452,10 +448,9 @@ def cmd_split(args):
     inp = Input.from_args(args)
     sel = Selected(inp, args, gauge_stage.compute(inp.polygons, tile=inp.tile))
     split = split_of(args, sel)
-    rdb = new_rdb(inp, "linf_opc split")
-    write_selection(inp, sel, rdb)
-    s = write_split(inp, split, rdb)
-    rdb.save(inp.file("windows.lyrdb"))
+    write_selection(inp, sel)
+    s = write_split(inp, split)
+    write_windows_report(inp, sel, split, "linf_opc split", inp.file("windows.lyrdb"))
     return select_line(sel, inp.dbu, inp.dir) + "\n" + split_line(s, inp.dir)
 
 
@@ -476,11 +471,10 @@ def flow(inp, args, progress=None):
     split = split_of(args, sel)
     # flow.lyrdb: gauges.lyrdb followed by the selection's and the split's categories and items,
     # joined as text (report_db.py): the gauges are not loaded into KLayout only to be saved again
-    rdb = new_rdb(inp, "linf_opc flow")
-    stats = write_selection(inp, sel, rdb)
-    ss = write_split(inp, split, rdb)
+    stats = write_selection(inp, sel)
+    ss = write_split(inp, split)
     parts = inp.file("flow_parts.lyrdb")
-    rdb.save(parts)
+    write_windows_report(inp, sel, split, "linf_opc flow", parts)
     report_db.merge(inp.file("gauges.lyrdb"), parts, inp.file("flow.lyrdb"), "linf_opc flow")
     os.remove(parts)
     output.write_json({"voronoi": sv, "gauges": sg, "select": {k: stats[k] for k in ("pitch_um", "markers", "chosen")},
