@@ -1,7 +1,7 @@
-"""One report database from two saved ones, as text: flow.lyrdb is gauges.lyrdb (written directly,
-up to half a million items on a full layer) followed by the selection's and the split's
-categories and items (a few thousand, filled through KLayout's API). Loading the gauges into
-KLayout only to save them again took a fifth of a mid-size flow.
+"""One report database from two saved ones, as text: flow.lyrdb is gauges.lyrdb (up to half a
+million items on a full layer) followed by the selection's and the split's categories and items
+(selection_output.write_report). Loading the gauges into KLayout only to save them again took a
+fifth of a mid-size flow.
 
 Both files are in the layout KLayout saves (and gauge_output.write_report imitates): header,
 <tags>, <categories>, <cells>, <items>, one element per line. The result is what KLayout saves
