@@ -6,7 +6,7 @@ from xml.sax import saxutils
 
 import pya
 
-from . import core, drawing
+from . import core, drawing, report_db
 from .gauges import TYPES, GaugeTable
 from .output import copy_drawing
 
@@ -133,25 +133,20 @@ def write_report(gauges, dbu, cell_name, source, path, max_per_type=REPORT_MAX_P
     esc = saxutils.escape
     with open(path, "w", encoding="utf-8") as f:
         w = f.write
-        w('<?xml version="1.0" encoding="utf-8"?>\n<report-database>\n <description/>\n')
-        w(" <original-file>%s</original-file>\n" % esc(source) if source else " <original-file/>\n")
-        w(" <generator>linf_opc gauges</generator>\n <top-cell>%s</top-cell>\n <tags>\n </tags>\n"
-          " <categories>\n" % esc(cell_name))
+        w(report_db.head(source, "linf_opc gauges", cell_name) + " <tags>\n </tags>\n <categories>\n")
         for t in TYPES:
             w("  <category>\n   <name>%s</name>\n   <description>%s</description>\n   <categories>\n"
               "   </categories>\n  </category>\n" % (t, esc(DESCRIPTIONS[t])))
-        w(" </categories>\n <cells>\n  <cell>\n   <name>%s</name>\n   <variant/>\n   <references>\n"
-          "   </references>\n  </cell>\n </cells>\n <items>\n" % esc(cell_name))
-        head = ("  <item>\n   <tags/>\n   <category>%%s</category>\n   <cell>%s</cell>\n   <visited>false</visited>\n"
-                "   <multiplicity>1</multiplicity>\n   <image/>\n   <values>\n" % esc(cell_name).replace("%", "%%"))
-        item = (head + "    <value>edge: (%.12g,%.12g;%.12g,%.12g)</value>\n"
+        w(" </categories>\n" + report_db.cells(cell_name) + " <items>\n")
+        item = (report_db.item_head([], "%s", esc(cell_name).replace("%", "%%")) +
+                "    <value>edge: (%.12g,%.12g;%.12g,%.12g)</value>\n"
                 "    <value>[#score] float: %.12g</value>\n    <value>[#norm_score] float: %.12g</value>\n"
                 "    <value>[#cd] float: %.12g</value>\n    <value>[#tiebreak] float: %.12g</value>\n"
-                "    <value>[#rank] float: %.12g</value>\n   </values>\n  </item>\n")
+                "    <value>[#rank] float: %.12g</value>\n" + report_db.ITEM_END)
         for g in gauges:
             w(item % (g.type, g.x1 * dbu, g.y1 * dbu, g.x2 * dbu, g.y2 * dbu, g.score * dbu, g.norm_score,
                       g.cd * dbu, g.tiebreak * dbu, float(g.rank)))
-        w(" </items>\n</report-database>\n")
+        w(report_db.END)
     return len(gauges)
 
 

@@ -1,4 +1,8 @@
-"""One report database from two saved ones, as text: flow.lyrdb is gauges.lyrdb (up to half a
+"""Report databases as text, in the layout KLayout saves them: the pieces the direct writers
+(gauge_output.write_report, selection_output.write_report) share, and one database from two
+saved ones.
+
+flow.lyrdb is gauges.lyrdb (up to half a
 million items on a full layer) followed by the selection's and the split's categories and items
 (selection_output.write_report). Loading the gauges into KLayout only to save them again took a
 fifth of a mid-size flow.
@@ -11,12 +15,43 @@ ones; the categories, then the items, of the first and then of the second; the f
 (both name the same single top cell). The first file's items must all name the same values
 (as write_report's do): its tags are taken from its first item, and the rest is copied as bytes."""
 import re
+from xml.sax import saxutils
+
+ITEM_END = "   </values>\n  </item>\n"
+END = " </items>\n</report-database>\n"
 
 _SECTIONS = ("tags", "categories", "cells", "items")
 _ITEMS_END = b" </items>\n"
-_TAIL = _ITEMS_END + b"</report-database>\n"
+_TAIL = END.encode()
 _VALUE_TAG = re.compile(rb"<value>\[#?([^\]]+)\]")
 _TAG = re.compile(rb"  <tag>\n   <name>([^<]*)</name>\n.*?  </tag>\n", re.S)
+
+
+def head(source, generator, cell_name):
+    """The lines before <tags>."""
+    esc = saxutils.escape
+    return ('<?xml version="1.0" encoding="utf-8"?>\n<report-database>\n <description/>\n%s'
+            " <generator>%s</generator>\n <top-cell>%s</top-cell>\n"
+            % (" <original-file>%s</original-file>\n" % esc(source) if source else " <original-file/>\n",
+               esc(generator), esc(cell_name)))
+
+
+def tag(name):
+    """A tag's entry in <tags>."""
+    return "  <tag>\n   <name>%s</name>\n   <description/>\n  </tag>\n" % name
+
+
+def cells(cell_name):
+    """The <cells> block of a database with one top cell."""
+    return (" <cells>\n  <cell>\n   <name>%s</name>\n   <variant/>\n   <references>\n   </references>\n"
+            "  </cell>\n </cells>\n" % saxutils.escape(cell_name))
+
+
+def item_head(tags, category, cell):
+    """An item's lines up to its values; `cell` escaped already."""
+    return ("  <item>\n   %s\n   <category>%s</category>\n   <cell>%s</cell>\n   <visited>false</visited>\n"
+            "   <multiplicity>1</multiplicity>\n   <image/>\n   <values>\n"
+            % ("<tags>%s</tags>" % ",".join(tags) if tags else "<tags/>", category, cell))
 
 
 def _blocks(f):
@@ -71,7 +106,7 @@ def merge(first, second, out, generator):
         for n in _VALUE_TAG.findall(first_item):
             if n not in names:
                 names.append(n)
-                tags.append((n, b"  <tag>\n   <name>%s</name>\n   <description/>\n  </tag>\n" % n))
+                tags.append((n, tag(n.decode()).encode()))
         tags += [(n, e) for n, e in _tags(b["tags"]) if n not in names]
         o.write(head)
         o.write(b" <tags>\n%s </tags>\n" % b"".join(e for _, e in tags))

@@ -5,6 +5,7 @@ from xml.sax import saxutils
 
 import pya
 
+from . import report_db
 from .selection import MODE_NAMES
 
 CSV_HEADER = ["id", "x1", "y1", "x2", "y2", "gauge_id", "type", "score", "markers_covered"]
@@ -101,10 +102,8 @@ def write_report(path, study, gauges, dbu, cell_name, source, generator, markers
                 plain.append(t)
         # KLayout lists an item's tags in the order the tags were made.
         tags = sorted(tags, key=plain.index)
-        items.append("  <item>\n   %s\n   <category>%s</category>\n   <cell>%s</cell>\n   <visited>false</visited>\n"
-                     "   <multiplicity>1</multiplicity>\n   <image/>\n   <values>\n%s   </values>\n  </item>\n"
-                     % ("<tags>%s</tags>" % ",".join(tags) if tags else "<tags/>", category, cell,
-                        "".join("    <value>%s</value>\n" % v for v in values)))
+        items.append(report_db.item_head(tags, category, cell) + "".join("    <value>%s</value>\n" % v for v in values)
+                     + report_db.ITEM_END)
 
     def box(x1, y1, x2, y2):
         return "box: (%s,%s;%s,%s)" % (_g(x1 * dbu), _g(y1 * dbu), _g(x2 * dbu), _g(y2 * dbu))
@@ -144,16 +143,12 @@ def write_report(path, study, gauges, dbu, cell_name, source, generator, markers
     tags = user[:4] + [t for t in plain if t.startswith(("mode_", "size_"))] + user[4:] + \
         [t for t in plain if not t.startswith(("mode_", "size_"))]
     with open(path, "w", encoding="utf-8") as f:
-        f.write('<?xml version="1.0" encoding="utf-8"?>\n<report-database>\n <description/>\n')
-        f.write(" <original-file>%s</original-file>\n" % esc(source) if source else " <original-file/>\n")
-        f.write(" <generator>%s</generator>\n <top-cell>%s</top-cell>\n <tags>\n" % (esc(generator), cell))
-        for t in tags:
-            f.write("  <tag>\n   <name>%s</name>\n   <description/>\n  </tag>\n" % t)
+        f.write(report_db.head(source, generator, cell_name) + " <tags>\n")
+        f.writelines(report_db.tag(t) for t in tags)
         f.write(" </tags>\n <categories>\n%s </categories>\n" % "".join(indent(c, 2) for c in cats))
-        f.write(" <cells>\n  <cell>\n   <name>%s</name>\n   <variant/>\n   <references>\n   </references>\n"
-                "  </cell>\n </cells>\n <items>\n" % cell)
+        f.write(report_db.cells(cell_name) + " <items>\n")
         f.writelines(items)
-        f.write(" </items>\n</report-database>\n")
+        f.write(report_db.END)
 
 
 def stats(study, dbu, chosen, similarity=None):
