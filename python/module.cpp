@@ -18,6 +18,7 @@
 #include "linf/gauge.hpp"
 #include "linf/selection.hpp"
 #include "linf/sites.hpp"
+#include "linf/stream.hpp"
 
 namespace py = pybind11;
 using namespace linf;
@@ -77,15 +78,14 @@ std::vector<Polygon> polygons_of(const py::object& obj) {
   return in;
 }
 
-py::dict to_python_summary(const Result& r) {
-  const Diagram& d = r.diagram;
+py::dict to_python_summary(const Diagram& d, const CheckReport& c) {
   py::dict check;
-  check["ok"] = r.check.ok();
-  check["sampled_points"] = r.check.sampled_points;
-  check["pairs_tested"] = r.check.pairs_tested;
-  check["pairs_separated"] = r.check.pairs_separated;
-  check["worst_error"] = r.check.worst_error;
-  check["messages"] = r.check.messages;
+  check["ok"] = c.ok();
+  check["sampled_points"] = c.sampled_points;
+  check["pairs_tested"] = c.pairs_tested;
+  check["pairs_separated"] = c.pairs_separated;
+  check["worst_error"] = c.worst_error;
+  check["messages"] = c.messages;
   py::dict out;
   out["check"] = check;
   out["sites"] = d.sites.sites.size();
@@ -113,7 +113,7 @@ py::dict to_python(const Result& r) {
     pieces.append(py::make_tuple(kind_name(p.kind), p.p.x, p.p.y, p.q.x, p.q.y, p.d1, p.d2, a.a.x, a.a.y, a.b.x,
                                  a.b.y, b.a.x, b.a.y, b.b.x, b.b.y, p.a, p.b));
   }
-  py::dict out = to_python_summary(r);
+  py::dict out = to_python_summary(r.diagram, r.check);
   out["pieces"] = pieces;
   return out;
 }
@@ -244,16 +244,27 @@ struct Files {
   DrawCounts drawn{};
   DrawCounts counts{};  // pieces per kind, counted in C++: tens of millions on a layer
 
+  GdsLayers layers() const {
+    GdsLayers L;
+    L.layer = gds_layer;
+    L.dbu = dbu;
+    L.cell = gds_cell;
+    return L;
+  }
   void write(Diagram& d) {
     for (const Piece& p : d.pieces) ++counts[std::size_t(p.kind)];
     if (!csv.empty()) write_pieces_csv(d, dbu, csv);
-    if (!gds.empty()) {
-      GdsLayers L;
-      L.layer = gds_layer;
-      L.dbu = dbu;
-      L.cell = gds_cell;
-      drawn = write_pieces_gds(d, L, gds);
-    }
+    if (!gds.empty()) drawn = write_pieces_gds(d, layers(), gds);
+  }
+  // The same files with the pieces streamed past (stream.hpp), never all in memory; with the
+  // gauges' stretches if asked.
+  StreamResult stream(std::vector<Polygon>&& in, const DiagramOptions& o, bool stretches) {
+    StreamOutputs so;
+    so.csv = csv, so.dbu = dbu, so.gds = gds, so.layers = layers();
+    if (stretches) so.keep = measurable_pair;
+    StreamResult r = stream_voronoi(std::move(in), o, so);
+    counts = r.counts, drawn = r.drawn;
+    return r;
   }
   void report(py::dict& d) const {
     d["counts"] = counts_dict(counts);
@@ -289,14 +300,24 @@ PYBIND11_MODULE(linf_opc_core, m) {
          double dbu, bool with_pieces, const std::string& gds, int gds_layer, const std::string& gds_cell) {
         std::vector<Polygon> in = polygons_of(polys);
         Files files{csv, gds, gds_layer, dbu, gds_cell};
-        Result r;
-        {
-          py::gil_scoped_release unlocked;
-          r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
-          files.write(r.diagram);
+        py::dict d;
+        if (with_pieces) {
+          Result r;
+          {
+            py::gil_scoped_release unlocked;
+            r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
+            files.write(r.diagram);
+          }
+          d = to_python(r);
+        } else {
+          StreamResult r;
+          {
+            py::gil_scoped_release unlocked;
+            r = files.stream(std::move(in), options(check, pairs, threads, tile), false);
+          }
+          d = to_python_summary(r.diagram, r.check);
+          d["pieces"] = r.pieces;
         }
-        py::dict d = with_pieces ? to_python(r) : to_python_summary(r);
-        if (!with_pieces) d["pieces"] = r.diagram.pieces.size();
         files.report(d);
         return d;
       },
@@ -314,7 +335,8 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "gds: also write them there as GDSII, zero-width paths on gds_layer, datatype 200 + kind index, in one cell\n"
       "named gds_cell (dbu: its units); 'drawn' then counts them per kind (a piece rounding to one grid point is\n"
       "not drawn).\n"
-      "pieces=False: 'pieces' is only their number (a large layer's pieces as tuples take gigabytes).\n"
+      "pieces=False: 'pieces' is only their number (a large layer's pieces as tuples take gigabytes), and the\n"
+      "pieces stream past the checker and the writers tile by tile, never all in memory (same files).\n"
       "'counts': pieces per kind. Raises DiagramError if the independent checker rejects the diagram.");
 
   m.def(
@@ -324,33 +346,50 @@ PYBIND11_MODULE(linf_opc_core, m) {
          int gds_layer, const std::string& gds_cell, const std::string& gauges_csv) {
         std::vector<Polygon> in = polygons_of(polys);
         Files files{csv, gds, gds_layer, dbu, gds_cell};
-        Result r;
+        GaugeOptions o;
+        o.tooth_fraction = tooth_fraction;
+        o.space_limit_widths = space_limit;
+        Diagram diagram;  // sites and statistics
         Gauges g;
         double seconds = 0;
-        {
-          py::gil_scoped_release unlocked;
-          r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
-          files.write(r.diagram);
-        }
-        py::dict d = with_pieces ? to_python(r) : to_python_summary(r);
-        files.report(d);
-        if (!with_pieces) d["pieces"] = r.diagram.pieces.size();
-        {
+        py::dict d;
+        if (with_pieces) {
+          Result r;
+          {
+            py::gil_scoped_release unlocked;
+            r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
+            files.write(r.diagram);
+          }
+          d = to_python(r);
           py::gil_scoped_release unlocked;
           const auto t0 = std::chrono::steady_clock::now();
-          // The pieces, the largest buffer, are consumed as the stretches grow.
           Stretches st = take_gauge_stretches(r.diagram);
-          GaugeOptions o;
-          o.tooth_fraction = tooth_fraction;
-          o.space_limit_widths = space_limit;
           g = gauges_of(r.diagram.sites, std::move(st), o);
           seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-          if (!gauges_csv.empty()) write_gauges_csv(g.gauges, dbu, gauges_csv);
+          diagram = std::move(r.diagram);
+        } else {
+          // The pieces stream past the writers and into the stretches: never all in memory.
+          StreamResult r;
+          {
+            py::gil_scoped_release unlocked;
+            r = files.stream(std::move(in), options(check, pairs, threads, tile), true);
+            const auto t0 = std::chrono::steady_clock::now();
+            g = gauges_of(r.diagram.sites, std::move(r.stretches), o);
+            seconds = r.seconds_stretches + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          }
+          d = to_python_summary(r.diagram, r.check);
+          d["pieces"] = r.pieces;
+          diagram = std::move(r.diagram);
+        }
+        files.report(d);
+        if (!gauges_csv.empty()) {
+          py::gil_scoped_release unlocked;
+          write_gauges_csv(g.gauges, dbu, gauges_csv);
         }
         d["seconds"].cast<py::dict>()["gauges"] = seconds;
         py::dict res;
         res["stretches"] = g.stretches.size();
-        res["gauges"] = gauge_columns(r.diagram.sites, g, with_paths);
+        res["gauges"] = gauge_columns(diagram.sites, g, with_paths);
         res["typical_width"] = g.typical_width;
         res["space_limit"] = g.space_limit;
         res["diagram"] = d;
@@ -367,7 +406,8 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "b_x2, b_y2, type: 0 internal, 1 external, 2 sandwich, 3 comb, 4 T); 'stretches': the measurable stretches,\n"
       "'typical_width', 'space_limit', 'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}.\n"
       "DBU throughout. space_limit_widths: spaces wider than this many typical widths are not pattern (0: keep all).\n"
-      "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them. csv, gds, gds_layer, dbu:\n"
+      "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them (else they stream past, see\n"
+      "voronoi_polygons). csv, gds, gds_layer, dbu:\n"
       "as in voronoi_polygons, and gds_cell. gauges_csv: also write the gauges there (gauges.csv, micrometres).");
 
   m.def(

@@ -53,8 +53,9 @@ double allowance(const Sites& s, const Box& c) {
 
 }  // namespace
 
-std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats) {
-  if (sites.sites.size() < 2) return {};
+void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
+                 const PartSink& sink) {
+  if (sites.sites.size() < 2) return;
   const double tau = allowance(sites, clip);
   std::vector<int> all(sites.sites.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
@@ -73,33 +74,53 @@ std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const Build
   }
   const double margin = std::floor(std::max({x2 - x1, y2 - y1, 64.0}) / 64) + 0.3125;
   const Box inner{x1 - margin, y1 - margin, x2 + margin, y2 + margin};
+  if (!opt.far_field_pass || inner.x1 <= clip.x1 || inner.y1 <= clip.y1 || inner.x2 >= clip.x2 ||
+      inner.y2 >= clip.y2) {
+    std::vector<Piece> part = run(sites.sites, all, clip, nullptr, opt, tau, st);
+    if (stats) *stats = st;
+    sink(part, clip);
+    return;
+  }
+  std::vector<int> border;
+  const double eps = 1e-9 * std::max({1.0, std::fabs(inner.x1), std::fabs(inner.x2), std::fabs(inner.y1),
+                                      std::fabs(inner.y2)});
+  auto on_border = [&](const Vec2& v) {
+    return std::fabs(v.x - inner.x1) <= eps || std::fabs(v.x - inner.x2) <= eps || std::fabs(v.y - inner.y1) <= eps ||
+           std::fabs(v.y - inner.y2) <= eps;
+  };
+  build_tiled(sites.sites, inner, opt, tau, st, [&](std::vector<Piece>& part, const Box& frame) {
+    for (const Piece& p : part)
+      if (on_border(p.p) || on_border(p.q)) border.push_back(p.a), border.push_back(p.b);
+    sink(part, frame);
+  });
+  std::sort(border.begin(), border.end());
+  border.erase(std::unique(border.begin(), border.end()), border.end());
+  if (border.size() < 2) border = all;  // one site owns the whole border: let the pass decide
+  std::vector<Piece> far = run(sites.sites, std::move(border), clip, &inner, opt, tau, st);
+  if (stats) *stats = st;
+  // The far field's pieces lie outside the inner box; its vertices on that box are shared.
+  sink(far, inner);
+}
+
+bool join_order(const Piece& x, const Piece& y) { return detail::piece_order(x, y); }
+
+void join_pair(std::vector<Piece>& pieces) {
+  std::vector<char> used;
+  std::vector<Piece> joined;
+  detail::join_run(pieces.data(), pieces.data() + pieces.size(), used, joined);
+  pieces.swap(joined);
+}
+
+std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats) {
   // Every tile's joined pieces are appended to one vector with room for the usual 3-3.5 pieces
   // a site reserved at once: its pages are committed only as pieces are written, so nothing is
   // ever copied or held twice (a growing vector would hold up to three times the pieces while
   // it reallocates, a concatenation of per-tile vectors twice).
   std::vector<Piece> raw;
+  if (sites.sites.size() < 2) return raw;
   raw.reserve(std::size_t(4.5 * double(sites.sites.size())) + 64);
-  auto append = [&](const std::vector<Piece>& part) { raw.insert(raw.end(), part.begin(), part.end()); };
-  if (!opt.far_field_pass || inner.x1 <= clip.x1 || inner.y1 <= clip.y1 || inner.x2 >= clip.x2 ||
-      inner.y2 >= clip.y2) {
-    append(run(sites.sites, all, clip, nullptr, opt, tau, st));
-  } else {
-    build_tiled(sites.sites, inner, opt, tau, st, raw);
-    std::vector<int> border;
-    const double eps = 1e-9 * std::max({1.0, std::fabs(inner.x1), std::fabs(inner.x2), std::fabs(inner.y1),
-                                        std::fabs(inner.y2)});
-    auto on_border = [&](const Vec2& v) {
-      return std::fabs(v.x - inner.x1) <= eps || std::fabs(v.x - inner.x2) <= eps || std::fabs(v.y - inner.y1) <= eps ||
-             std::fabs(v.y - inner.y2) <= eps;
-    };
-    for (const Piece& p : raw)
-      if (on_border(p.p) || on_border(p.q)) border.push_back(p.a), border.push_back(p.b);
-    std::sort(border.begin(), border.end());
-    border.erase(std::unique(border.begin(), border.end()), border.end());
-    if (border.size() < 2) border = all;  // one site owns the whole border: let the pass decide
-    append(run(sites.sites, std::move(border), clip, &inner, opt, tau, st));
-  }
-  if (stats) *stats = st;
+  build_parts(sites, clip, opt, stats,
+              [&](std::vector<Piece>& part, const Box&) { raw.insert(raw.end(), part.begin(), part.end()); });
   join_pieces(raw);
   return raw;
 }

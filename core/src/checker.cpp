@@ -6,6 +6,7 @@
 #include <boost/iterator/transform_iterator.hpp>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <sstream>
 
@@ -113,150 +114,186 @@ bool segments_cross(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) 
 
 }  // namespace
 
-CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
+struct Checker::Impl {
+  const std::vector<Site>& S;
+  Box clip;
+  CheckOptions opt;
+  double tol = 0;
+  SiteTree sites;
   CheckReport rep;
-  const auto& S = d.sites.sites;
-  if (S.empty()) return rep;
-  double scale = 1, bx1 = INFINITY, by1 = INFINITY, bx2 = -INFINITY, by2 = -INFINITY;
-  for (const Site& t : S) {
-    for (const Point& p : {t.a, t.b}) {
-      scale = std::max({scale, std::fabs(double(p.x)), std::fabs(double(p.y))});
-      bx1 = std::min(bx1, double(p.x)), by1 = std::min(by1, double(p.y));
-      bx2 = std::max(bx2, double(p.x)), by2 = std::max(by2, double(p.y));
-    }
-  }
-  const double tol = opt.tolerance > 0 ? opt.tolerance : 1e-6 + 1e-9 * scale;
-  SiteTree sites(S);
-
-  // Pieces are sampled in chunks on the worker threads, each into its own report; the reports
-  // are merged in chunk order, so the messages do not depend on the threads.
-  const int k = std::max(2, opt.samples_per_piece);
-  const std::size_t chunk = 4096, nchunks = (d.pieces.size() + chunk - 1) / chunk;
-  std::vector<CheckReport> part(nchunks);
-  auto sample = [&](std::size_t c) {
-    CheckReport& r = part[c];
-    for (std::size_t pi = c * chunk; pi < std::min(d.pieces.size(), (c + 1) * chunk); ++pi) {
-      const Piece& pc = d.pieces[pi];
-      for (int i = 0; i < k; ++i) {
-        const double t = double(i) / double(k - 1);
-        const double x = pc.p.x + t * (pc.q.x - pc.p.x), y = pc.p.y + t * (pc.q.y - pc.p.y);
-        const double da = dist_site(x, y, S[pc.a]), db = dist_site(x, y, S[pc.b]);
-        ++r.sampled_points;
-        r.worst_error = std::max(r.worst_error, std::fabs(da - db));
-        auto where = [&] {  // formatted on failure only: sampling runs by the million
-          std::ostringstream w;
-          w.precision(12);
-          w << "(" << x << "," << y << ") owners " << pc.a << "," << pc.b << " da=" << da << " db=" << db;
-          return w.str();
-        };
-        if (std::fabs(da - db) > tol) fail(r, r.equidistance_errors, "not equidistant at " + where());
-        if (i == 0 || i == k - 1) {
-          const double stated = i == 0 ? pc.d1 : pc.d2;
-          r.worst_error = std::max(r.worst_error, std::fabs(stated - da));
-          if (std::fabs(stated - da) > tol) fail(r, r.clearance_errors, "wrong clearance at " + where());
-        }
-        const double dmin = std::min(da, db);
-        std::int32_t closer = -1;
-        double dc = 0;
-        sites.within(x, y, dmin - tol, [&](std::int32_t s, double ds) { closer = s, dc = ds; });
-        if (closer >= 0) {
-          r.worst_error = std::max(r.worst_error, dmin - dc);
-          std::ostringstream m;
-          m << "site " << closer << " at " << dc << " is closer than the owners at " << where();
-          fail(r, r.closer_site_errors, m.str());
-        }
-      }
-    }
-  };
-  detail::parallel_for(nchunks, opt.threads, [&](unsigned, std::size_t i) { sample(i); });
-  for (const CheckReport& r : part) {
-    rep.sampled_points += r.sampled_points;
-    rep.worst_error = std::max(rep.worst_error, r.worst_error);
-    rep.equidistance_errors += r.equidistance_errors;
-    rep.clearance_errors += r.clearance_errors;
-    rep.closer_site_errors += r.closer_site_errors;
-    for (const std::string& m : r.messages)
-      if (rep.messages.size() < 20) rep.messages.push_back(m);
-  }
-
-  // Completeness: a change of owner (by the ownership rule) between two close points needs a
-  // piece between them. The pairs are drawn first and indexed (a few thousand); then one pass
-  // over the pieces marks the pairs each one crosses. An index over the pieces instead would
-  // cost more memory than the pieces themselves on a large layer.
-  std::mt19937_64 rng(opt.seed);
-  const double mx = std::max(1.0, 0.1 * std::max(bx2 - bx1, by2 - by1));
-  std::uniform_real_distribution<double> ux(bx1 - mx, bx2 + mx), uy(by1 - mx, by2 + mx), ua(0, 2 * M_PI);
-  std::uniform_real_distribution<double> u01(0, 1);
-  // Half the pairs fall anywhere; half near a random site, within a typical clearance of it,
-  // where most Voronoi edges are.
-  std::vector<double> clear;
-  for (std::size_t i = 0; i < d.pieces.size(); i += 1 + d.pieces.size() / 1000) clear.push_back(d.pieces[i].d1);
-  std::sort(clear.begin(), clear.end());
-  const double reach = 2 * (clear.empty() ? 1.0 : clear[clear.size() / 2]) + opt.pair_step;
-  std::uniform_int_distribution<std::size_t> us(0, S.size() - 1);
   struct Pair { Vec2 p, q; std::int32_t sp, sq; };
   std::vector<Pair> separated;
-  for (int i = 0; i < opt.crossing_pairs; ++i) {
-    Vec2 p{ux(rng), uy(rng)};
-    if (i % 4 == 1) {
-      const Site& t = S[us(rng)];
-      const double f = u01(rng);
-      p = {double(t.a.x) + f * double(t.b.x - t.a.x) + reach * (2 * u01(rng) - 1),
-           double(t.a.y) + f * double(t.b.y - t.a.y) + reach * (2 * u01(rng) - 1)};
-    } else if (i % 4 == 3) {
-      // Halfway between a site and one of its neighbours: right where their edge should be.
-      const Site& t = S[us(rng)];
-      const double f = u01(rng);
-      const Vec2 pt{double(t.a.x) + f * double(t.b.x - t.a.x), double(t.a.y) + f * double(t.b.y - t.a.y)};
-      std::vector<std::int32_t> near;
-      sites.k_nearest(pt.x, pt.y, 8, near);
-      const Site& u = S[near[std::size_t(u01(rng) * double(near.size())) % near.size()]];
-      const double g = u01(rng);
-      const Vec2 pu{double(u.a.x) + g * double(u.b.x - u.a.x), double(u.a.y) + g * double(u.b.y - u.a.y)};
-      p = {0.5 * (pt.x + pu.x) + opt.pair_step * (2 * u01(rng) - 1), 0.5 * (pt.y + pu.y) + opt.pair_step * (2 * u01(rng) - 1)};
+  std::unique_ptr<Tree> pairs;
+  std::vector<char> crossed;
+
+  Impl(const std::vector<Site>& s, const Box& c, const CheckOptions& o) : S(s), clip(c), opt(o), sites(s) {}
+
+  // Completeness: a change of owner (by the ownership rule) between two close points needs a
+  // piece between them. The pairs are drawn first and indexed (a few thousand); then every
+  // piece marks the pairs it crosses. An index over the pieces instead would cost more memory
+  // than the pieces themselves on a large layer, and would need them all at once.
+  void draw_pairs(double typical_clearance) {
+    double bx1 = INFINITY, by1 = INFINITY, bx2 = -INFINITY, by2 = -INFINITY;
+    for (const Site& t : S)
+      for (const Point& p : {t.a, t.b}) {
+        bx1 = std::min(bx1, double(p.x)), by1 = std::min(by1, double(p.y));
+        bx2 = std::max(bx2, double(p.x)), by2 = std::max(by2, double(p.y));
+      }
+    std::mt19937_64 rng(opt.seed);
+    const double mx = std::max(1.0, 0.1 * std::max(bx2 - bx1, by2 - by1));
+    std::uniform_real_distribution<double> ux(bx1 - mx, bx2 + mx), uy(by1 - mx, by2 + mx), ua(0, 2 * M_PI);
+    std::uniform_real_distribution<double> u01(0, 1);
+    // Half the pairs fall anywhere; half near a random site, within a typical clearance of it,
+    // where most Voronoi edges are.
+    const double reach = 2 * typical_clearance + opt.pair_step;
+    std::uniform_int_distribution<std::size_t> us(0, S.size() - 1);
+    for (int i = 0; i < opt.crossing_pairs; ++i) {
+      Vec2 p{ux(rng), uy(rng)};
+      if (i % 4 == 1) {
+        const Site& t = S[us(rng)];
+        const double f = u01(rng);
+        p = {double(t.a.x) + f * double(t.b.x - t.a.x) + reach * (2 * u01(rng) - 1),
+             double(t.a.y) + f * double(t.b.y - t.a.y) + reach * (2 * u01(rng) - 1)};
+      } else if (i % 4 == 3) {
+        // Halfway between a site and one of its neighbours: right where their edge should be.
+        const Site& t = S[us(rng)];
+        const double f = u01(rng);
+        const Vec2 pt{double(t.a.x) + f * double(t.b.x - t.a.x), double(t.a.y) + f * double(t.b.y - t.a.y)};
+        std::vector<std::int32_t> near;
+        sites.k_nearest(pt.x, pt.y, 8, near);
+        const Site& u = S[near[std::size_t(u01(rng) * double(near.size())) % near.size()]];
+        const double g = u01(rng);
+        const Vec2 pu{double(u.a.x) + g * double(u.b.x - u.a.x), double(u.a.y) + g * double(u.b.y - u.a.y)};
+        p = {0.5 * (pt.x + pu.x) + opt.pair_step * (2 * u01(rng) - 1), 0.5 * (pt.y + pu.y) + opt.pair_step * (2 * u01(rng) - 1)};
+      }
+      const double ang = ua(rng);
+      const Vec2 q{p.x + opt.pair_step * std::cos(ang), p.y + opt.pair_step * std::sin(ang)};
+      auto inside = [&](const Vec2& v) { return v.x > clip.x1 && v.x < clip.x2 && v.y > clip.y1 && v.y < clip.y2; };
+      if (!inside(p) || !inside(q)) continue;  // the diagram ends at the clip box
+      const auto op = sites.owner(p.x, p.y, tol), oq = sites.owner(q.x, q.y, tol);
+      ++rep.pairs_tested;
+      if (!op.clear || !oq.clear || op.site == oq.site) continue;
+      if (op.dist <= tol || oq.dist <= tol) continue;  // on the boundary itself: no edge needed there
+      ++rep.pairs_separated;
+      separated.push_back({p, q, op.site, oq.site});
     }
-    const double ang = ua(rng);
-    const Vec2 q{p.x + opt.pair_step * std::cos(ang), p.y + opt.pair_step * std::sin(ang)};
-    auto inside = [&](const Vec2& v) { return v.x > d.clip.x1 && v.x < d.clip.x2 && v.y > d.clip.y1 && v.y < d.clip.y2; };
-    if (!inside(p) || !inside(q)) continue;  // the diagram ends at the clip box
-    const auto op = sites.owner(p.x, p.y, tol), oq = sites.owner(q.x, q.y, tol);
-    ++rep.pairs_tested;
-    if (!op.clear || !oq.clear || op.site == oq.site) continue;
-    if (op.dist <= tol || oq.dist <= tol) continue;  // on the boundary itself: no edge needed there
-    ++rep.pairs_separated;
-    separated.push_back({p, q, op.site, oq.site});
-  }
-  std::vector<Entry> pe;
-  pe.reserve(separated.size());
-  for (std::size_t i = 0; i < separated.size(); ++i) {
-    const Pair& x = separated[i];
-    pe.emplace_back(BBox(BPt(std::min(x.p.x, x.q.x), std::min(x.p.y, x.q.y)),
-                         BPt(std::max(x.p.x, x.q.x), std::max(x.p.y, x.q.y))),
-                    std::int32_t(i));
-  }
-  const Tree pairs(pe.begin(), pe.end());
-  // Chunks of pieces on the worker threads, each worker with its own marks, or-ed in the end.
-  std::vector<std::vector<char>> crossed(detail::worker_count(nchunks, opt.threads),
-                                         std::vector<char>(separated.size(), 0));
-  detail::parallel_for(nchunks, opt.threads, [&](unsigned w, std::size_t c) {
-    for (std::size_t pi = c * chunk; pi < std::min(d.pieces.size(), (c + 1) * chunk); ++pi) {
-      const Piece& pc = d.pieces[pi];
-      const BBox b(BPt(std::min(pc.p.x, pc.q.x), std::min(pc.p.y, pc.q.y)),
-                   BPt(std::max(pc.p.x, pc.q.x), std::max(pc.p.y, pc.q.y)));
-      for (auto it = pairs.qbegin(bgi::intersects(b)); it != pairs.qend(); ++it)
-        if (segments_cross(separated[it->second].p, separated[it->second].q, pc.p, pc.q)) crossed[w][it->second] = 1;
+    std::vector<Entry> pe;
+    pe.reserve(separated.size());
+    for (std::size_t i = 0; i < separated.size(); ++i) {
+      const Pair& x = separated[i];
+      pe.emplace_back(BBox(BPt(std::min(x.p.x, x.q.x), std::min(x.p.y, x.q.y)),
+                           BPt(std::max(x.p.x, x.q.x), std::max(x.p.y, x.q.y))),
+                      std::int32_t(i));
     }
-  });
-  for (std::size_t i = 0; i < separated.size(); ++i) {
-    if (std::any_of(crossed.begin(), crossed.end(), [&](const std::vector<char>& mark) { return mark[i]; })) continue;
-    const Pair& x = separated[i];
-    std::ostringstream m;
-    m.precision(12);
-    m << "no piece between (" << x.p.x << "," << x.p.y << ") nearest " << x.sp << " and (" << x.q.x << ","
-      << x.q.y << ") nearest " << x.sq;
-    fail(rep, rep.missing_edge_errors, m.str());
+    pairs = std::make_unique<Tree>(pe.begin(), pe.end());
+    crossed.assign(separated.size(), 0);
   }
-  return rep;
+
+  // Every piece sampled at its ends and inside, and the pairs it crosses marked. Chunks of
+  // pieces on the worker threads, each into its own report and marks, merged in chunk order,
+  // so that the messages do not depend on the threads.
+  void add(const Piece* pieces, std::size_t n) {
+    const int k = std::max(2, opt.samples_per_piece);
+    const std::size_t chunk = 4096, nchunks = (n + chunk - 1) / chunk;
+    std::vector<CheckReport> part(nchunks);
+    std::vector<std::vector<char>> marks(detail::worker_count(nchunks, opt.threads), std::vector<char>(separated.size(), 0));
+    auto sample = [&](unsigned w, std::size_t c) {
+      CheckReport& r = part[c];
+      for (std::size_t pi = c * chunk; pi < std::min(n, (c + 1) * chunk); ++pi) {
+        const Piece& pc = pieces[pi];
+        for (int i = 0; i < k; ++i) {
+          const double t = double(i) / double(k - 1);
+          const double x = pc.p.x + t * (pc.q.x - pc.p.x), y = pc.p.y + t * (pc.q.y - pc.p.y);
+          const double da = dist_site(x, y, S[pc.a]), db = dist_site(x, y, S[pc.b]);
+          ++r.sampled_points;
+          r.worst_error = std::max(r.worst_error, std::fabs(da - db));
+          auto where = [&] {  // formatted on failure only: sampling runs by the million
+            std::ostringstream w;
+            w.precision(12);
+            w << "(" << x << "," << y << ") owners " << pc.a << "," << pc.b << " da=" << da << " db=" << db;
+            return w.str();
+          };
+          if (std::fabs(da - db) > tol) fail(r, r.equidistance_errors, "not equidistant at " + where());
+          if (i == 0 || i == k - 1) {
+            const double stated = i == 0 ? pc.d1 : pc.d2;
+            r.worst_error = std::max(r.worst_error, std::fabs(stated - da));
+            if (std::fabs(stated - da) > tol) fail(r, r.clearance_errors, "wrong clearance at " + where());
+          }
+          const double dmin = std::min(da, db);
+          std::int32_t closer = -1;
+          double dc = 0;
+          sites.within(x, y, dmin - tol, [&](std::int32_t s, double ds) { closer = s, dc = ds; });
+          if (closer >= 0) {
+            r.worst_error = std::max(r.worst_error, dmin - dc);
+            std::ostringstream m;
+            m << "site " << closer << " at " << dc << " is closer than the owners at " << where();
+            fail(r, r.closer_site_errors, m.str());
+          }
+        }
+        const BBox b(BPt(std::min(pc.p.x, pc.q.x), std::min(pc.p.y, pc.q.y)),
+                     BPt(std::max(pc.p.x, pc.q.x), std::max(pc.p.y, pc.q.y)));
+        for (auto it = pairs->qbegin(bgi::intersects(b)); it != pairs->qend(); ++it)
+          if (segments_cross(separated[it->second].p, separated[it->second].q, pc.p, pc.q)) marks[w][it->second] = 1;
+      }
+    };
+    detail::parallel_for(nchunks, opt.threads, sample);
+    for (const CheckReport& r : part) {
+      rep.sampled_points += r.sampled_points;
+      rep.worst_error = std::max(rep.worst_error, r.worst_error);
+      rep.equidistance_errors += r.equidistance_errors;
+      rep.clearance_errors += r.clearance_errors;
+      rep.closer_site_errors += r.closer_site_errors;
+      for (const std::string& m : r.messages)
+        if (rep.messages.size() < 20) rep.messages.push_back(m);
+    }
+    for (const std::vector<char>& m : marks)
+      for (std::size_t i = 0; i < m.size(); ++i) crossed[i] |= m[i];
+  }
+
+  CheckReport finish() {
+    for (std::size_t i = 0; i < separated.size(); ++i) {
+      if (crossed[i]) continue;
+      const Pair& x = separated[i];
+      std::ostringstream m;
+      m.precision(12);
+      m << "no piece between (" << x.p.x << "," << x.p.y << ") nearest " << x.sp << " and (" << x.q.x << ","
+        << x.q.y << ") nearest " << x.sq;
+      fail(rep, rep.missing_edge_errors, m.str());
+    }
+    return rep;
+  }
+};
+
+Checker::Checker(const Sites& sites, const Box& clip, double typical_clearance, const CheckOptions& opt) {
+  if (sites.sites.empty()) return;
+  impl_ = std::make_unique<Impl>(sites.sites, clip, opt);
+  double scale = 1;
+  for (const Site& t : sites.sites)
+    for (const Point& p : {t.a, t.b}) scale = std::max({scale, std::fabs(double(p.x)), std::fabs(double(p.y))});
+  impl_->tol = opt.tolerance > 0 ? opt.tolerance : 1e-6 + 1e-9 * scale;
+  impl_->draw_pairs(typical_clearance);
+}
+
+Checker::~Checker() = default;
+
+void Checker::add(const Piece* pieces, std::size_t n) {
+  if (impl_ && n) impl_->add(pieces, n);
+}
+
+CheckReport Checker::finish() { return impl_ ? impl_->finish() : CheckReport{}; }
+
+double typical_clearance(const std::vector<Piece>& pieces) {
+  std::vector<double> clear;
+  for (std::size_t i = 0; i < pieces.size(); i += 1 + pieces.size() / 1000) clear.push_back(pieces[i].d1);
+  if (clear.empty()) return 1.0;
+  std::nth_element(clear.begin(), clear.begin() + clear.size() / 2, clear.end());
+  return clear[clear.size() / 2];
+}
+
+CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {
+  Checker c(d.sites, d.clip, typical_clearance(d.pieces), opt);
+  c.add(d.pieces.data(), d.pieces.size());
+  return c.finish();
 }
 
 }  // namespace linf

@@ -40,25 +40,44 @@ void write_gauges_csv(const std::vector<Gauge>& gauges, double dbu, const std::s
   if (std::ferror(f.get())) throw std::runtime_error("error writing " + path);
 }
 
-void write_pieces_csv(Diagram& d, double dbu, const std::string& path) {
-  const auto t0 = std::chrono::steady_clock::now();
-  std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
-  if (!f) throw std::runtime_error("cannot write " + path);
-  std::fputs("kind,x1,y1,x2,y2,d1,d2,a_x1,a_y1,a_x2,a_y2,b_x1,b_y1,b_x2,b_y2\r\n", f.get());
-  const auto& S = d.sites.sites;
-  std::string line;
-  for (const Piece& p : d.pieces) {
+PiecesCsv::PiecesCsv(const std::string& path, double dbu) : path_(path), dbu_(dbu) {
+  f_ = std::fopen(path.c_str(), "w");
+  if (!f_) throw std::runtime_error("cannot write " + path);
+  std::fputs("kind,x1,y1,x2,y2,d1,d2,a_x1,a_y1,a_x2,a_y2,b_x1,b_y1,b_x2,b_y2\r\n", f_);
+}
+
+PiecesCsv::~PiecesCsv() {
+  if (f_) std::fclose(f_);
+}
+
+void PiecesCsv::add(const Sites& sites, const Piece* pieces, std::size_t n) {
+  const auto& S = sites.sites;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Piece& p = pieces[i];
     const Site& a = S[p.a];
     const Site& b = S[p.b];
     const double v[14] = {p.p.x, p.p.y, p.q.x, p.q.y, p.d1, p.d2,
                           double(a.a.x), double(a.a.y), double(a.b.x), double(a.b.y),
                           double(b.a.x), double(b.a.y), double(b.b.x), double(b.b.y)};
-    line.assign(kind_name(p.kind));
-    for (double x : v) append_fixed6(line, x * dbu);
-    line.append("\r\n");
-    std::fwrite(line.data(), 1, line.size(), f.get());
+    line_.assign(kind_name(p.kind));
+    for (double x : v) append_fixed6(line_, x * dbu_);
+    line_.append("\r\n");
+    std::fwrite(line_.data(), 1, line_.size(), f_);
   }
-  if (std::ferror(f.get())) throw std::runtime_error("error writing " + path);
+}
+
+void PiecesCsv::close() {
+  const bool bad = std::ferror(f_) != 0;
+  const bool failed = std::fclose(f_) != 0;
+  f_ = nullptr;
+  if (bad || failed) throw std::runtime_error("error writing " + path_);
+}
+
+void write_pieces_csv(Diagram& d, double dbu, const std::string& path) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PiecesCsv csv(path, dbu);
+  csv.add(d.sites, d.pieces.data(), d.pieces.size());
+  csv.close();
   d.seconds_csv = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 

@@ -373,6 +373,10 @@ StretchFilter measurable_pairs(const Sites& s) {
 
 }  // namespace
 
+bool measurable_pair(const Sites& sites, std::int32_t a, std::int32_t b, PieceKind kind) {
+  return measurable(sites, a, b, kind);
+}
+
 Stretches gauge_stretches(const Diagram& d) { return stretches_of(d, measurable_pairs(d.sites)); }
 Stretches take_gauge_stretches(Diagram& d) { return take_stretches(d, measurable_pairs(d.sites)); }
 
@@ -406,6 +410,14 @@ Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& op
     }
     external_at.build(sites.sites.size(), site_stretch);
   }
+  // Room for the most there can be, reserved at once: pages are committed only as gauges are
+  // written, where a vector growing by doubling would hold one and a half times them while it
+  // moves (hundreds of MB on a full layer). A stretch gives one plain gauge, an internal one
+  // at most a sandwich and a comb or T on each side.
+  std::size_t most = 0;
+  for (std::int32_t i = 0; i < n; ++i)
+    if (ok[i]) most += r.stretches[i].kind == PieceKind::Internal ? 4 : 1;
+  r.gauges.reserve(most);
   for (std::int32_t i = 0; i < n; ++i) {
     const Stretch s = r.stretches[i];
     if (!ok[i]) continue;

@@ -118,15 +118,20 @@ void GdsWriter::close() {
   if (std::ferror(s_->f.get()) || std::fflush(s_->f.get()) != 0) throw std::runtime_error("error writing " + s_->path);
 }
 
-DrawCounts write_pieces_gds(const Diagram& d, const GdsLayers& L, const std::string& path) {
-  GdsWriter w(path, L.dbu, L.cell);
-  DrawCounts n{};
-  for (const Piece& p : d.pieces) {
+void draw_pieces(GdsWriter& w, const GdsLayers& L, const Piece* pieces, std::size_t n, DrawCounts& drawn) {
+  for (std::size_t i = 0; i < n; ++i) {
+    const Piece& p = pieces[i];
     if (grid(p.p.x) == grid(p.q.x) && grid(p.p.y) == grid(p.q.y)) continue;
     const auto k = std::size_t(p.kind);
     w.path(L.layer, L.datatype[k], p.p.x, p.p.y, p.q.x, p.q.y);
-    ++n[k];
+    ++drawn[k];
   }
+}
+
+DrawCounts write_pieces_gds(const Diagram& d, const GdsLayers& L, const std::string& path) {
+  GdsWriter w(path, L.dbu, L.cell);
+  DrawCounts n{};
+  draw_pieces(w, L, d.pieces.data(), d.pieces.size(), n);
   w.close();
   return n;
 }

@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <set>
+#include <stdexcept>
+#include <tuple>
 #include <unordered_map>
 #include <utility>
 
@@ -50,18 +53,18 @@ void refine(const Site& owner, const Vec2& u, const Vec2& v, double du, double d
 
 // Orders one owner pair's pieces into paths: start at an end of odd degree, walk while a
 // continuation exists, repeat until every piece is used.
-void chain(const Diagram& d, const std::int32_t* ids, std::size_t n, Stretches& out) {
+void chain(const Sites& sites, const Piece* pieces, const std::int32_t* ids, std::size_t n, Stretches& out) {
   std::unordered_map<Key, std::vector<std::int32_t>, KeyHash> at;
   std::vector<std::int32_t> real;
   for (std::size_t k = 0; k < n; ++k) {
     const std::int32_t i = ids[k];
-    const Piece& p = d.pieces[i];
+    const Piece& p = pieces[i];
     if (key_of(p.p) == key_of(p.q)) continue;
     real.push_back(i);
     at[key_of(p.p)].push_back(i);
     at[key_of(p.q)].push_back(i);
   }
-  const Piece& first = d.pieces[ids[0]];
+  const Piece& first = pieces[ids[0]];
   const std::int32_t a = std::min(first.a, first.b), b = std::max(first.a, first.b);
   if (real.empty()) {  // only degenerate pieces: one point
     out.open(a, b, first.kind);
@@ -72,9 +75,9 @@ void chain(const Diagram& d, const std::int32_t* ids, std::size_t n, Stretches& 
   while (!unused.empty()) {
     // Prefer a start of odd degree so that an open chain is walked from one end.
     std::int32_t start = *unused.begin();
-    Key from = key_of(d.pieces[start].p);
+    Key from = key_of(pieces[start].p);
     for (std::int32_t i : unused) {
-      const Piece& p = d.pieces[i];
+      const Piece& p = pieces[i];
       bool found = false;
       for (const Key& k : {key_of(p.p), key_of(p.q)}) {
         std::size_t deg = 0;
@@ -88,17 +91,17 @@ void chain(const Diagram& d, const std::int32_t* ids, std::size_t n, Stretches& 
       }
       if (found) break;
     }
-    out.open(a, b, d.pieces[start].kind);
+    out.open(a, b, pieces[start].kind);
     std::int32_t cur = start;
     while (cur >= 0) {
       unused.erase(cur);
-      const Piece& p = d.pieces[cur];
+      const Piece& p = pieces[cur];
       const bool forward = key_of(p.p) == from;
       const Vec2 u = forward ? p.p : p.q, v = forward ? p.q : p.p;
       const double du = forward ? p.d1 : p.d2, dv = forward ? p.d2 : p.d1;
       if (out.empty_path()) out.add(u, du);
       out.lengthen(dist(u, v));
-      refine(d.sites.sites[p.a], u, v, du, dv, 3, out);
+      refine(sites.sites[p.a], u, v, du, dv, 3, out);
       from = key_of(v);
       cur = -1;
       for (std::int32_t j : at[from])
@@ -125,65 +128,90 @@ bool adjacent(const Sites& s, std::int32_t a, std::int32_t b) {
 
 namespace {
 
-// A point stretch: a pair without a chain whose regions meet at a vertex; added after the chains.
+// A point stretch: a pair without a chain whose regions meet at a vertex; added after the chains,
+// in the order of the vertices (their keys).
 struct PointStretch {
   std::int32_t a, b;
   PieceKind kind;
   Vec2 at;
   double clearance;
+  Key key;
 };
 
+// One piece end at a vertex: what the vertex needs of it.
+struct End {
+  Vec2 at;
+  double clearance;
+  std::int32_t a, b;
+  PieceKind kind;
+};
+
+// The pairs meeting at one vertex (the piece ends `end(0..n-1)` sharing one key) that `keep`
+// accepts and that have no chain. Nothing here depends on the order of the ends: a diagram
+// that comes in parts gives the same point stretches as a whole one.
+template <class EndAt, class HasChain>
+void vertex(const Key& key, std::size_t n, const EndAt& end, const Sites& sites, const StretchFilter& keep,
+            const HasChain& has_chain, std::vector<std::int32_t>& owners, std::vector<PointStretch>& out) {
+  if (n < 2) return;
+  // Where the ends differ by rounding, the greatest (x, y, clearance) gives the vertex.
+  End top = end(0);
+  bool side = false, internal = false;  // some end not between adjacent sites; one inside
+  owners.clear();
+  for (std::size_t e = 0; e < n; ++e) {
+    const End x = end(e);
+    if (std::tie(x.at.x, x.at.y, x.clearance) > std::tie(top.at.x, top.at.y, top.clearance)) top = x;
+    if (x.kind != PieceKind::Adjacent) side = true, internal = internal || x.kind == PieceKind::Internal;
+    owners.push_back(x.a);
+    owners.push_back(x.b);
+  }
+  if (!(top.clearance > 0) || !side) return;  // on the boundary, or only between adjacent sites
+  std::sort(owners.begin(), owners.end());
+  owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
+  if (owners.size() < 3) return;
+  // The pieces around a vertex off the boundary agree on the side (inside or outside).
+  for (std::size_t i = 0; i < owners.size(); ++i)
+    for (std::size_t j = i + 1; j < owners.size(); ++j) {
+      const std::int32_t a = owners[i], b = owners[j];
+      const PieceKind sk = internal                                                ? PieceKind::Internal
+                           : sites.sites[a].shape == sites.sites[b].shape ? PieceKind::Notch
+                                                                           : PieceKind::External;
+      if (adjacent(sites, a, b) || (keep && !keep(a, b, sk)) || has_chain(a, b)) continue;
+      out.push_back({a, b, sk, top.at, top.clearance, key});
+    }
+}
+
+End end_of(const Piece* pieces, std::uint32_t e) {
+  const Piece& p = pieces[e >> 1];
+  return e & 1 ? End{p.q, p.d2, p.a, p.b, p.kind} : End{p.p, p.d1, p.a, p.b, p.kind};
+}
+
+// Piece ends (piece << 1 | end) sorted by position; `n` pieces. 4 bytes an end: a layer has
+// tens of millions.
+std::vector<std::uint32_t> sorted_ends(const Piece* pieces, std::size_t n) {
+  std::vector<std::uint32_t> ends(2 * n);
+  for (std::uint32_t i = 0; i < ends.size(); ++i) ends[i] = i;
+  auto pos = [&](std::uint32_t e) -> const Vec2& { return e & 1 ? pieces[e >> 1].q : pieces[e >> 1].p; };
+  std::sort(ends.begin(), ends.end(), [&](std::uint32_t x, std::uint32_t y) {
+    return std::make_pair(key_of(pos(x)), x) < std::make_pair(key_of(pos(y)), y);
+  });
+  return ends;
+}
+
 // Vertices where three or more sites meet: every pair of them that `keep` accepts and that has
-// no chain, in the order of the vertices. The piece ends are sorted by position as (piece, end)
-// ids, 4 bytes each: a layer has tens of millions.
+// no chain, in the order of the vertices.
 template <class HasChain>
 std::vector<PointStretch> meets(const Diagram& d, const StretchFilter& keep, const HasChain& has_chain) {
   std::vector<PointStretch> out;
-  std::vector<std::uint32_t> ends(2 * d.pieces.size());
-  for (std::uint32_t i = 0; i < ends.size(); ++i) ends[i] = i;
-  auto end_at = [&](std::uint32_t e) -> const Vec2& { return e & 1 ? d.pieces[e >> 1].q : d.pieces[e >> 1].p; };
-  std::sort(ends.begin(), ends.end(), [&](std::uint32_t x, std::uint32_t y) {
-    return std::make_pair(key_of(end_at(x)), x) < std::make_pair(key_of(end_at(y)), y);
-  });
-  std::vector<std::pair<std::int32_t, PieceKind>> owners;
+  const Piece* pieces = d.pieces.data();
+  const std::vector<std::uint32_t> ends = sorted_ends(pieces, d.pieces.size());
+  std::vector<std::int32_t> owners;
   for (std::size_t g0 = 0; g0 < ends.size();) {
-    const Key k = key_of(end_at(ends[g0]));
+    const Key k = key_of(end_of(pieces, ends[g0]).at);
     std::size_t g1 = g0 + 1;
-    while (g1 < ends.size() && key_of(end_at(ends[g1])) == k) ++g1;
-    // The last end at the vertex gives its position and clearance, as every end agrees on them.
-    const std::uint32_t last = ends[g1 - 1];
-    const Piece& lp = d.pieces[last >> 1];
-    const Vec2 at = end_at(last);
-    const double clearance = last & 1 ? lp.d2 : lp.d1;
-    const bool many = g1 - g0 >= 2;
-    owners.clear();
-    if (many && clearance > 0)
-      for (std::size_t e = g0; e < g1; ++e) {
-        const Piece& p = d.pieces[ends[e] >> 1];
-        owners.push_back({p.a, p.kind});
-        owners.push_back({p.b, p.kind});
-      }
+    while (g1 < ends.size() && key_of(end_of(pieces, ends[g1]).at) == k) ++g1;
+    vertex(k, g1 - g0, [&](std::size_t e) { return end_of(pieces, ends[g0 + e]); }, d.sites, keep, has_chain,
+           owners, out);
     g0 = g1;
-    if (owners.empty()) continue;
-    // The pieces around a vertex agree on the side (inside or outside) unless it is on the
-    // boundary, where the clearance is zero.
-    std::stable_sort(owners.begin(), owners.end(), [](auto& x, auto& y) { return x.first < y.first; });
-    owners.erase(std::unique(owners.begin(), owners.end(), [](auto& x, auto& y) { return x.first == y.first; }),
-                 owners.end());
-    if (owners.size() < 3) continue;
-    PieceKind kind = PieceKind::Adjacent;
-    for (auto& o : owners)
-      if (o.second != PieceKind::Adjacent) kind = o.second;
-    if (kind == PieceKind::Adjacent) continue;
-    for (std::size_t i = 0; i < owners.size(); ++i)
-      for (std::size_t j = i + 1; j < owners.size(); ++j) {
-        const std::int32_t a = owners[i].first, b = owners[j].first;
-        const PieceKind sk = kind == PieceKind::Internal                            ? PieceKind::Internal
-                             : d.sites.sites[a].shape == d.sites.sites[b].shape ? PieceKind::Notch
-                                                                                  : PieceKind::External;
-        if (adjacent(d.sites, a, b) || (keep && !keep(a, b, sk)) || has_chain(a, b)) continue;
-        out.push_back({a, b, sk, at, clearance});
-      }
   }
   return out;
 }
@@ -230,7 +258,7 @@ Stretches stretches_of(const Diagram& d, const StretchFilter& keep) {
   for (std::size_t g0 = 0; g0 < order.size();) {
     std::size_t g1 = g0 + 1;
     while (g1 < order.size() && pair_of(d.pieces[order[g1]]) == pair_of(d.pieces[order[g0]])) ++g1;
-    chain(d, order.data() + g0, g1 - g0, out);
+    chain(d.sites, d.pieces.data(), order.data() + g0, g1 - g0, out);
     g0 = g1;
   }
   add_points(points, out);
@@ -266,7 +294,7 @@ Stretches take_stretches(Diagram& d, const StretchFilter& keep) {
     ids.clear();
     for (std::size_t i = g0; i < g1; ++i)
       if (!keep || keep(pr.first, pr.second, d.pieces[i].kind)) ids.push_back(std::int32_t(i));
-    if (!ids.empty()) chain(d, ids.data(), ids.size(), out);
+    if (!ids.empty()) chain(d.sites, d.pieces.data(), ids.data(), ids.size(), out);
     g0 = g1;
     if (g0 - released >= (std::size_t(1) << 16)) {  // 4 MB of pieces at a time
       detail::release_pages(d.pieces.data() + released, d.pieces.data() + g0);
@@ -276,6 +304,103 @@ Stretches take_stretches(Diagram& d, const StretchFilter& keep) {
   std::vector<Piece>().swap(d.pieces);
   add_points(points, out);
   return out;
+}
+
+struct StretchStream::Impl {
+  const Sites& sites;
+  StretchFilter keep;
+  Stretches out;
+  std::vector<PointStretch> points;  // from complete vertices; chains not yet known everywhere
+  std::vector<std::pair<Key, End>> held;  // ends at vertices on a part's frame
+  std::vector<std::int32_t> owners, ids;
+  bool pairs_started = false;
+};
+
+StretchStream::StretchStream(const Sites& sites, StretchFilter keep, std::size_t expected_pieces)
+    : impl_(std::make_unique<Impl>(Impl{sites, std::move(keep), {}, {}, {}, {}, {}, false})) {
+  reserve_for(expected_pieces / 2, expected_pieces, impl_->out);
+}
+
+StretchStream::~StretchStream() = default;
+
+void StretchStream::part(const std::vector<Piece>& part, const Box& frame) {
+  Impl& m = *impl_;
+  if (m.pairs_started) throw std::logic_error("StretchStream: every part comes before the pairs");
+  // A vertex farther than this from the frame has all its pieces in this part: pieces stop at
+  // the frame, and no end of another part can round to its key (1/1024 DBU).
+  const double eps = 1.0 / 64;
+  auto on_frame = [&](const Vec2& v) {
+    return std::fabs(v.x - frame.x1) <= eps || std::fabs(v.x - frame.x2) <= eps || std::fabs(v.y - frame.y1) <= eps ||
+           std::fabs(v.y - frame.y2) <= eps;
+  };
+  // A chain in this part settles a pair; one elsewhere is looked for in finish().
+  auto has_chain_here = [&](std::int32_t a, std::int32_t b) {
+    const auto pr = std::make_pair(a, b);
+    auto it = std::lower_bound(part.begin(), part.end(), pr, [](const Piece& x, const std::pair<std::int32_t, std::int32_t>& v) {
+      return pair_of(x) < v;
+    });
+    for (; it != part.end() && pair_of(*it) == pr; ++it)
+      if (!m.keep || m.keep(a, b, it->kind)) return true;
+    return false;
+  };
+  const std::vector<std::uint32_t> ends = sorted_ends(part.data(), part.size());
+  for (std::size_t g0 = 0; g0 < ends.size();) {
+    const Key k = key_of(end_of(part.data(), ends[g0]).at);
+    std::size_t g1 = g0 + 1;
+    bool framed = on_frame(end_of(part.data(), ends[g0]).at);
+    for (; g1 < ends.size() && key_of(end_of(part.data(), ends[g1]).at) == k; ++g1)
+      framed = framed || on_frame(end_of(part.data(), ends[g1]).at);
+    if (framed) {
+      for (std::size_t e = g0; e < g1; ++e) m.held.push_back({k, end_of(part.data(), ends[e])});
+    } else {
+      vertex(k, g1 - g0, [&](std::size_t e) { return end_of(part.data(), ends[g0 + e]); }, m.sites, m.keep,
+             has_chain_here, m.owners, m.points);
+    }
+    g0 = g1;
+  }
+}
+
+void StretchStream::pair(const Piece* pieces, std::size_t n) {
+  Impl& m = *impl_;
+  m.pairs_started = true;
+  if (n == 0) return;
+  const auto pr = pair_of(pieces[0]);
+  m.ids.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (!m.keep || m.keep(pr.first, pr.second, pieces[i].kind)) m.ids.push_back(std::int32_t(i));
+  if (!m.ids.empty()) chain(m.sites, pieces, m.ids.data(), m.ids.size(), m.out);
+}
+
+Stretches StretchStream::finish() {
+  Impl& m = *impl_;
+  std::sort(m.held.begin(), m.held.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  auto none = [](std::int32_t, std::int32_t) { return false; };
+  for (std::size_t g0 = 0; g0 < m.held.size();) {
+    std::size_t g1 = g0 + 1;
+    while (g1 < m.held.size() && m.held[g1].first == m.held[g0].first) ++g1;
+    vertex(m.held[g0].first, g1 - g0, [&](std::size_t e) { return m.held[g0 + e].second; }, m.sites, m.keep, none,
+           m.owners, m.points);
+    g0 = g1;
+  }
+  std::vector<std::pair<Key, End>>().swap(m.held);
+  // The chains are in pair order: a pair has one when a stretch opens with it.
+  const Stretches& st = m.out;
+  const std::size_t chains = st.size();
+  auto has_chain = [&](std::int32_t a, std::int32_t b) {
+    std::size_t lo = 0, hi = chains;
+    while (lo < hi) {
+      const std::size_t mid = (lo + hi) / 2;
+      const Stretch x = st[mid];
+      if (std::make_pair(x.a, x.b) < std::make_pair(a, b)) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo < chains && st[lo].a == a && st[lo].b == b;
+  };
+  m.points.erase(std::remove_if(m.points.begin(), m.points.end(), [&](const PointStretch& p) { return has_chain(p.a, p.b); }),
+                 m.points.end());
+  std::stable_sort(m.points.begin(), m.points.end(), [](const PointStretch& x, const PointStretch& y) { return x.key < y.key; });
+  add_points(m.points, m.out);
+  return std::move(m.out);
 }
 
 }  // namespace linf

@@ -132,7 +132,7 @@ constexpr std::size_t kAutoTileSites = std::size_t(1) << 16;
 }  // namespace
 
 void build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau, BuildStats& st,
-                 std::vector<Piece>& out) {
+                 const PartSink& sink) {
   const int T = task_level(sites.size());
   const std::size_t nt = std::size_t(1) << T;
   int Lt = 0;  // tile level: the coarsest whose boxes are no larger than the tile size
@@ -170,8 +170,11 @@ void build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOpt
       parallel_for(per * per, opt.threads, [&](unsigned w, std::size_t k) {
         workers[w].process(tasks[task_of(k)], halo[k]);
       });
-      const std::vector<Piece> part = collect(model, workers, st);
-      out.insert(out.end(), part.begin(), part.end());
+      std::vector<Piece> part = collect(model, workers, st);
+      Box frame = tasks[task_of(0)];
+      const Box& last = tasks[task_of(per * per - 1)];
+      frame.x2 = last.x2, frame.y2 = last.y2;
+      sink(part, frame);
       ++st.tiles;
       st.tasks += per * per;
       st.largest_tile_sites = std::max(st.largest_tile_sites, model.S.size());

@@ -17,8 +17,8 @@
 namespace linf::detail {
 
 // Pieces (global site ids, joined within each tile, not across tiles) of the diagram inside
-// `root`, appended to `out` tile by tile.
+// `root`, handed to `sink` tile by tile with the tile's box.
 void build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau, BuildStats& st,
-                 std::vector<Piece>& out);
+                 const PartSink& sink);
 
 }  // namespace linf::detail

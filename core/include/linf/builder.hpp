@@ -15,6 +15,7 @@
 // perpendicular through the endpoint, as in CGAL's convention.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "linf/piece.hpp"
@@ -44,5 +45,22 @@ struct BuildStats {
 // Pieces of one edge are joined where they continue each other in a straight line.
 std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const BuildOptions& opt = {},
                                BuildStats* stats = nullptr);
+
+// The order build_pieces leaves its pieces in: owner pair, then position.
+bool join_order(const Piece& x, const Piece& y);
+// How build_pieces joins pieces across parts: one owner pair's pieces, sorted by join_order,
+// joined where they continue each other in a straight line; in place, in join_order.
+void join_pair(std::vector<Piece>& pieces);
+
+// A part of the diagram: one tile's pieces (global site ids, joined within the part, sorted
+// by owner pair as join_pieces leaves them) and the box they lie in. Pieces continuing each
+// other across parts are not joined; a vertex on a part's box may have pieces in several parts.
+// The sink may take the part's contents.
+using PartSink = std::function<void(std::vector<Piece>& part, const Box& frame)>;
+
+// The same pieces as build_pieces, handed over part by part as the tiles are built instead of
+// kept: joining the parts (join_pieces over their union) gives build_pieces' result.
+void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
+                 const PartSink& sink);
 
 }  // namespace linf

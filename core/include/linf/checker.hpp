@@ -8,6 +8,7 @@
 //    the segment between them (no Voronoi edge is missing).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -35,5 +36,24 @@ struct CheckReport {
 };
 
 CheckReport check_diagram(const Diagram& d, const CheckOptions& opt = {});
+
+// The same check over pieces that come in batches (a layer too large to hold its pieces): the
+// pairs are drawn from the sites when it is made, each batch is sampled and marks the pairs its
+// pieces cross, finish() reports the pairs that no piece crossed. typical_clearance: how far
+// from a site half the pairs are drawn (check_diagram: the median clearance of the pieces).
+class Checker {
+ public:
+  Checker(const Sites& sites, const Box& clip, double typical_clearance, const CheckOptions& opt = {});
+  ~Checker();
+  void add(const Piece* pieces, std::size_t n);
+  CheckReport finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The median clearance at the start of a sample of about a thousand pieces.
+double typical_clearance(const std::vector<Piece>& pieces);
 
 }  // namespace linf

@@ -7,6 +7,7 @@
 // Written here rather than row by row in Python: a large layer has millions of pieces and
 // gauges. The same bytes as Python's csv module with "%.6f" (tested).
 #pragma once
+#include <cstdio>
 #include <string>
 
 #include "linf/gauge.hpp"
@@ -16,6 +17,21 @@ namespace linf {
 
 // Writes the file and its time into d.seconds_csv; throws std::runtime_error if it cannot.
 void write_pieces_csv(Diagram& d, double dbu, const std::string& path);
+
+// voronoi.csv written as the pieces come (a layer too large to hold them): the same bytes as
+// write_pieces_csv for the same pieces in the same order.
+class PiecesCsv {
+ public:
+  PiecesCsv(const std::string& path, double dbu);  // throws if the file cannot be written
+  ~PiecesCsv();
+  void add(const Sites& sites, const Piece* pieces, std::size_t n);
+  void close();  // throws on a write error
+
+ private:
+  std::FILE* f_ = nullptr;
+  std::string path_, line_;
+  double dbu_;
+};
 
 // Gauges in rank order; throws std::runtime_error if the file cannot be written.
 void write_gauges_csv(const std::vector<Gauge>& gauges, double dbu, const std::string& path);

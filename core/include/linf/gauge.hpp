@@ -51,6 +51,9 @@ struct Gauges {
 
 Gauges gauges_of(const Diagram& d, const GaugeOptions& opt = {});
 
+// The owner pairs whose stretches the gauges are made from: not adjacent, facing each other.
+bool measurable_pair(const Sites& sites, std::int32_t a, std::int32_t b, PieceKind kind);
+
 // The same in two steps, so that a caller can let the diagram's pieces go in between (on a
 // large layer they are the largest thing in memory): the stretches the gauges are made from
 // (measurable pairs only), then the gauges. take_gauge_stretches consumes d.pieces.

@@ -41,4 +41,8 @@ using DrawCounts = std::array<std::size_t, 4>;
 
 DrawCounts write_pieces_gds(const Diagram& d, const GdsLayers& layers, const std::string& path);
 
+// The same drawing as the pieces come: each piece longer than the grid a path on its kind's
+// datatype, counted in `drawn`.
+void draw_pieces(GdsWriter& w, const GdsLayers& layers, const Piece* pieces, std::size_t n, DrawCounts& drawn);
+
 }  // namespace linf

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "linf/piece.hpp"
@@ -88,6 +89,26 @@ Stretches stretches_of(const Diagram& d, const StretchFilter& keep = nullptr);
 // back as the stretches grow, so that a large layer never holds both whole. d.pieces is empty
 // afterwards. Same stretches, same order.
 Stretches take_stretches(Diagram& d, const StretchFilter& keep = nullptr);
+
+// Stretches of a diagram that comes in parts (build_parts), for a layer too large to hold its
+// pieces: the same stretches in the same order as stretches_of on the joined diagram. First
+// every part as build_parts hands it over, with kinds: its vertices away from its frame have
+// all their pieces there and give their point stretches at once; those on the frame wait.
+// Then every owner pair's final pieces (joined over the parts, as join_pieces orders them),
+// pairs ascending. finish() settles the waiting vertices and which point stretches' pairs
+// have a chain elsewhere.
+class StretchStream {
+ public:
+  StretchStream(const Sites& sites, StretchFilter keep, std::size_t expected_pieces = 0);
+  ~StretchStream();
+  void part(const std::vector<Piece>& part, const Box& frame);
+  void pair(const Piece* pieces, std::size_t n);
+  Stretches finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // Two sites are adjacent when they share a vertex (an edge and its endpoint, two edges of one
 // corner, the two ends of one edge): the distance between them is not a width or a space.
