@@ -256,6 +256,13 @@ struct Files {
     if (!csv.empty()) write_pieces_csv(d, dbu, csv);
     if (!gds.empty()) drawn = write_pieces_gds(d, layers(), gds);
   }
+  // The diagram held whole, its files written; the GIL released meanwhile.
+  Result whole(std::vector<Polygon>&& in, const DiagramOptions& o) {
+    py::gil_scoped_release unlocked;
+    Result r = voronoi_of_polygons(std::move(in), o);
+    write(r.diagram);
+    return r;
+  }
   // The same files with the pieces streamed past (stream.hpp), never all in memory; with the
   // gauges' stretches if asked.
   StreamResult stream(std::vector<Polygon>&& in, const DiagramOptions& o, bool stretches) {
@@ -302,12 +309,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
         Files files{csv, gds, gds_layer, dbu, gds_cell};
         py::dict d;
         if (with_pieces) {
-          Result r;
-          {
-            py::gil_scoped_release unlocked;
-            r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
-            files.write(r.diagram);
-          }
+          Result r = files.whole(std::move(in), options(check, pairs, threads, tile));
           d = to_python(r);
         } else {
           StreamResult r;
@@ -354,12 +356,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
         double seconds = 0;
         py::dict d;
         if (with_pieces) {
-          Result r;
-          {
-            py::gil_scoped_release unlocked;
-            r = voronoi_of_polygons(std::move(in), options(check, pairs, threads, tile));
-            files.write(r.diagram);
-          }
+          Result r = files.whole(std::move(in), options(check, pairs, threads, tile));
           d = to_python(r);
           py::gil_scoped_release unlocked;
           const auto t0 = std::chrono::steady_clock::now();

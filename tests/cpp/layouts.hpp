@@ -43,4 +43,19 @@ inline std::vector<Polygon> random_layout(std::uint64_t seed, Style style, int s
   return out;
 }
 
+// A block of many small random layouts side by side (nx by ny fields of 400 DBU): thousands of
+// sites, so that the builder's task grid has several levels to group into tiles.
+inline std::vector<Polygon> block(std::uint64_t seed, Style style, int nx, int ny) {
+  std::vector<Polygon> all;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      for (Polygon p : random_layout(seed * 1000 + std::uint64_t(j * nx + i), style, 8, 300)) {
+        for (Point& v : p.outer) v.x += 400 * i, v.y += 400 * j;
+        for (Ring& h : p.holes)
+          for (Point& v : h) v.x += 400 * i, v.y += 400 * j;
+        all.push_back(p);
+      }
+  return all;
+}
+
 }  // namespace linf::testing

@@ -19,20 +19,9 @@
 
 using namespace linf;
 
-namespace {
+using linf::testing::block;
 
-std::vector<Polygon> block(std::uint64_t seed, linf::testing::Style style, int nx, int ny) {
-  std::vector<Polygon> all;
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      for (Polygon p : linf::testing::random_layout(seed * 1000 + std::uint64_t(j * nx + i), style, 8, 300)) {
-        for (Point& v : p.outer) v.x += 400 * i, v.y += 400 * j;
-        for (Ring& h : p.holes)
-          for (Point& v : h) v.x += 400 * i, v.y += 400 * j;
-        all.push_back(p);
-      }
-  return all;
-}
+namespace {
 
 std::string slurp(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
