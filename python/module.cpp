@@ -385,7 +385,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
         }
         d["seconds"].cast<py::dict>()["gauges"] = seconds;
         py::dict res;
-        res["stretches"] = g.stretches.size();
+        res["stretches"] = g.measurable;
         res["gauges"] = gauge_columns(diagram.sites, g, with_paths);
         res["typical_width"] = g.typical_width;
         res["space_limit"] = g.space_limit;

@@ -399,12 +399,16 @@ Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& op
   for (std::int32_t i = 0; i < n; ++i)
     if (ok[i] && r.stretches[i].kind != PieceKind::Internal && 2 * least(r.stretches[i]) > r.space_limit + kTol)
       ok[i] = false;
+  // Only the stretches that make gauges or are a neighbour's from here on: the others go.
+  r.measurable = std::size_t(n);
+  r.stretches.keep_only(ok);
+  const std::int32_t m = std::int32_t(r.stretches.size());
   ExternalAt external_at;
   {
     std::vector<std::pair<std::int32_t, std::int32_t>> site_stretch;
-    for (std::int32_t i = 0; i < n; ++i) {
+    for (std::int32_t i = 0; i < m; ++i) {
       const Stretch s = r.stretches[i];
-      if (s.kind != PieceKind::External || !ok[i]) continue;
+      if (s.kind != PieceKind::External) continue;
       site_stretch.push_back({s.a, i});
       site_stretch.push_back({s.b, i});
     }
@@ -415,12 +419,11 @@ Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& op
   // moves (hundreds of MB on a full layer). A stretch gives one plain gauge, an internal one
   // at most a sandwich and a comb or T on each side.
   std::size_t most = 0;
-  for (std::int32_t i = 0; i < n; ++i)
-    if (ok[i]) most += r.stretches[i].kind == PieceKind::Internal ? 4 : 1;
+  for (std::int32_t i = 0; i < m; ++i)
+    most += r.stretches[i].kind == PieceKind::Internal ? 4 : 1;
   r.gauges.reserve(most);
-  for (std::int32_t i = 0; i < n; ++i) {
+  for (std::int32_t i = 0; i < m; ++i) {
     const Stretch s = r.stretches[i];
-    if (!ok[i]) continue;
     r.gauges.push_back(plain_gauge(sites, s, i));
     if (s.kind == PieceKind::Internal && !sites.sites[s.a].is_point() && !sites.sites[s.b].is_point())
       context_gauges(sites, r.stretches, i, external_at, opt, r.gauges);

@@ -306,6 +306,27 @@ Stretches take_stretches(Diagram& d, const StretchFilter& keep) {
   return out;
 }
 
+void Stretches::keep_only(const std::vector<bool>& keep) {
+  std::size_t h = 0, at = 0;
+  for (std::size_t i = 0; i < heads_.size(); ++i) {
+    if (!keep[i]) continue;
+    Head x = heads_[i];
+    std::copy(points_.begin() + x.first, points_.begin() + x.first + x.count, points_.begin() + at);
+    std::copy(clearance_.begin() + x.first, clearance_.begin() + x.first + x.count, clearance_.begin() + at);
+    x.first = std::uint32_t(at);
+    at += x.count;
+    heads_[h++] = x;
+  }
+  // The pages past the kept part are given back; the vectors keep their room (writing there
+  // again reads zeros first, which it overwrites).
+  detail::release_pages(heads_.data() + h, heads_.data() + heads_.size());
+  detail::release_pages(points_.data() + at, points_.data() + points_.size());
+  detail::release_pages(clearance_.data() + at, clearance_.data() + clearance_.size());
+  heads_.resize(h);
+  points_.resize(at);
+  clearance_.resize(at);
+}
+
 struct StretchStream::Impl {
   const Sites& sites;
   StretchFilter keep;

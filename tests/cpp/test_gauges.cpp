@@ -232,3 +232,48 @@ TEST(Stretches, TakingShuffledPiecesGivesTheSameStretches) {
   expect_same(want, got);
   EXPECT_TRUE(shuffled.pieces.empty());
 }
+
+// The gauges let go of the stretches that make no gauge; what is kept is the same stretches, in
+// the same order, large enough that pages are given back; and every gauge still lies on its own.
+TEST(Stretches, KeepingSomeKeepsThemWhole) {
+  std::vector<Polygon> tracks;
+  std::mt19937_64 rng(5);
+  for (Coord row = 0; row < 60; ++row)
+    for (Coord x = Coord(rng() % 300); x < 40000;) {
+      const Coord w = 150 + Coord(rng() % 1350);
+      tracks.push_back(linf::testing::box(x, row * 100, x + w, row * 100 + 50));
+      x += w + 50 + Coord(rng() % 550);
+    }
+  const Diagram d = voronoi_of_polygons(tracks).diagram;
+  const Stretches all = gauge_stretches(d);
+  ASSERT_GT(all.size(), 10000u);  // a third dropped is tens of pages of each array
+  std::vector<bool> keep(all.size());
+  for (std::size_t i = 0; i < keep.size(); ++i) keep[i] = (i * 7919) % 3 != 0;
+  Stretches kept = gauge_stretches(d);
+  kept.keep_only(keep);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    if (!keep[i]) continue;
+    ASSERT_LT(k, kept.size());
+    const Stretch a = all[i], b = kept[k++];
+    ASSERT_EQ(a.a, b.a);
+    ASSERT_EQ(a.b, b.b);
+    ASSERT_EQ(a.length, b.length);
+    ASSERT_EQ(a.path.size(), b.path.size());
+    for (std::size_t j = 0; j < a.path.size(); ++j) {
+      ASSERT_EQ(a.path[j].x, b.path[j].x);
+      ASSERT_EQ(a.path[j].y, b.path[j].y);
+      ASSERT_EQ(a.clearance[j], b.clearance[j]);
+    }
+  }
+  EXPECT_EQ(k, kept.size());
+
+  const Gauges g = gauges_of(d);
+  EXPECT_EQ(g.measurable, all.size());
+  EXPECT_LT(g.stretches.size(), all.size());
+  for (const Gauge& x : g.gauges) {
+    const Stretch s = g.stretches[x.stretch];
+    ASSERT_TRUE((s.a == x.a && s.b == x.b) || x.type != GaugeType::Internal) << "gauge " << x.rank;
+    if (x.neighbour >= 0) ASSERT_EQ(g.stretches[x.neighbour].kind, PieceKind::External);
+  }
+}

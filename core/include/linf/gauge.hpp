@@ -43,7 +43,8 @@ struct GaugeOptions {
 };
 
 struct Gauges {
-  Stretches stretches;        // the measurable ones (see gauges_of)
+  Stretches stretches;        // those the gauges lie on (Gauge::stretch, Gauge::neighbour)
+  std::size_t measurable = 0; // the measurable stretches considered (see gauges_of)
   std::vector<Gauge> gauges;  // ranked
   double typical_width = 0;   // extension-weighted median width of the internal gauges
   double space_limit = 0;     // widest space reported (infinite if no limit)

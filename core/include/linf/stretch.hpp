@@ -66,6 +66,10 @@ class Stretches {
   void lengthen(double d) { heads_.back().length += d; }
   bool empty_path() const { return heads_.back().count == 0; }
 
+  // Keeps the stretches i with keep[i], in order, and gives the memory of the rest back to the
+  // system: on a full layer half the measurable stretches make no gauge.
+  void keep_only(const std::vector<bool>& keep);
+
  private:
   struct Head {
     std::int32_t a, b;
