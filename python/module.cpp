@@ -14,6 +14,7 @@
 #include "linf/diagram.hpp"
 #include "linf/engine.hpp"
 #include "linf/gds.hpp"
+#include "linf/pages.hpp"
 #include "linf/farthest.hpp"
 #include "linf/gauge.hpp"
 #include "linf/selection.hpp"
@@ -139,7 +140,7 @@ py::bytes blank_bytes(std::size_t n, char*& data) {
 // them): "reals" float64 x10 (x1, y1, x2, y2, cx, cy, cd, score, norm_score, tiebreak), "ints"
 // int32 x13 (rank, teeth, site_a, site_b, a_x1, a_y1, a_x2, a_y2, b_x1, b_y1, b_x2, b_y2, type
 // index in internal, external, sandwich, comb, T). The stretches are let go first unless their
-// paths are asked for.
+// paths are asked for, and the gauges as their columns are written (g.gauges is empty after).
 py::dict gauge_columns(const Sites& sites, Gauges& g, bool with_paths) {
   const auto& S = sites.sites;
   if (!with_paths) g.stretches = Stretches();
@@ -148,6 +149,9 @@ py::dict gauge_columns(const Sites& sites, Gauges& g, bool with_paths) {
   py::bytes reals = blank_bytes(10 * sizeof(double) * n, rd);
   py::bytes ints = blank_bytes(13 * sizeof(std::int32_t) * n, id);
   py::list paths;
+  // The gauges are consumed as the columns are written and their pages given back: on a full
+  // layer both are gigabytes, and nothing reads the records afterwards.
+  std::size_t done = 0, released = 0;
   for (const Gauge& x : g.gauges) {
     for (double v : {x.p.x, x.p.y, x.q.x, x.q.y, x.at.x, x.at.y, x.cd, x.score, x.norm_score, x.tiebreak}) {
       std::memcpy(rd, &v, sizeof v);
@@ -167,7 +171,12 @@ py::dict gauge_columns(const Sites& sites, Gauges& g, bool with_paths) {
       for (const Vec2& v : g.stretches[x.stretch].path) pts.append(py::make_tuple(v.x, v.y));
       paths.append(pts);
     }
+    if (++done - released >= (std::size_t(1) << 16)) {
+      detail::release_pages(g.gauges.data() + released, g.gauges.data() + done);
+      released = done;
+    }
   }
+  std::vector<Gauge>().swap(g.gauges);
   py::dict out;
   out["count"] = n;
   out["reals"] = reals;

@@ -1,7 +1,7 @@
 #include "linf/stretch.hpp"
 
 #include "linf/distance.hpp"
-#include "pages.hpp"
+#include "linf/pages.hpp"
 
 #include <algorithm>
 #include <cmath>
