@@ -28,21 +28,38 @@ std::vector<Gauge> of_type(const std::vector<Gauge>& all, GaugeType t) {
 double line_length(const Gauge& g) { return std::hypot(g.q.x - g.p.x, g.q.y - g.p.y); }
 
 // The same stretches in the same order, to the last bit.
+void expect_same(const Stretch& a, const Stretch& b) {
+  ASSERT_EQ(a.a, b.a);
+  ASSERT_EQ(a.b, b.b);
+  ASSERT_EQ(a.kind, b.kind);
+  ASSERT_EQ(a.length, b.length);
+  ASSERT_EQ(a.path.size(), b.path.size());
+  for (std::size_t k = 0; k < a.path.size(); ++k) {
+    ASSERT_EQ(a.path[k].x, b.path[k].x);
+    ASSERT_EQ(a.path[k].y, b.path[k].y);
+    ASSERT_EQ(a.clearance[k], b.clearance[k]);
+  }
+}
+
 void expect_same(const Stretches& want, const Stretches& got) {
   ASSERT_EQ(want.size(), got.size());
   for (std::size_t i = 0; i < want.size(); ++i) {
-    const Stretch a = want[i], b = got[i];
-    ASSERT_EQ(a.a, b.a);
-    ASSERT_EQ(a.b, b.b);
-    ASSERT_EQ(a.kind, b.kind);
-    ASSERT_EQ(a.length, b.length);
-    ASSERT_EQ(a.path.size(), b.path.size());
-    for (std::size_t k = 0; k < a.path.size(); ++k) {
-      ASSERT_EQ(a.path[k].x, b.path[k].x);
-      ASSERT_EQ(a.path[k].y, b.path[k].y);
-      ASSERT_EQ(a.clearance[k], b.clearance[k]);
-    }
+    expect_same(want[i], got[i]);
+    if (::testing::Test::HasFatalFailure()) return;
   }
+}
+
+// Rows of 50 wide tracks at a 100 pitch, random lengths and gaps: a routed-metal-like block.
+std::vector<Polygon> tracks(std::uint64_t seed, Coord rows, Coord length) {
+  std::vector<Polygon> out;
+  std::mt19937_64 rng(seed);
+  for (Coord row = 0; row < rows; ++row)
+    for (Coord x = Coord(rng() % 300); x < length;) {
+      const Coord w = 150 + Coord(rng() % 1350);
+      out.push_back(linf::testing::box(x, row * 100, x + w, row * 100 + 50));
+      x += w + 50 + Coord(rng() % 550);
+    }
+  return out;
 }
 
 }  // namespace
@@ -206,15 +223,7 @@ TEST(Stretches, TakingThePiecesGivesTheSameStretches) {
 
 // Large enough that the consumed pieces' pages are given back several times on the way.
 TEST(Stretches, TakingManyPiecesGivesTheSameStretches) {
-  std::vector<Polygon> tracks;
-  std::mt19937_64 rng(11);
-  for (Coord row = 0; row < 100; ++row)
-    for (Coord x = Coord(rng() % 300); x < 60000;) {
-      const Coord w = 150 + Coord(rng() % 1350);
-      tracks.push_back(linf::testing::box(x, row * 100, x + w, row * 100 + 50));
-      x += w + 50 + Coord(rng() % 550);
-    }
-  Result r = voronoi_of_polygons(tracks);
+  Result r = voronoi_of_polygons(tracks(11, 100, 60000));
   ASSERT_GT(r.diagram.pieces.size(), std::size_t(2) << 16);  // released at least twice
   const Stretches want = gauge_stretches(r.diagram);
   const Stretches got = take_gauge_stretches(r.diagram);
@@ -236,15 +245,7 @@ TEST(Stretches, TakingShuffledPiecesGivesTheSameStretches) {
 // The gauges let go of the stretches that make no gauge; what is kept is the same stretches, in
 // the same order, large enough that pages are given back; and every gauge still lies on its own.
 TEST(Stretches, KeepingSomeKeepsThemWhole) {
-  std::vector<Polygon> tracks;
-  std::mt19937_64 rng(5);
-  for (Coord row = 0; row < 60; ++row)
-    for (Coord x = Coord(rng() % 300); x < 40000;) {
-      const Coord w = 150 + Coord(rng() % 1350);
-      tracks.push_back(linf::testing::box(x, row * 100, x + w, row * 100 + 50));
-      x += w + 50 + Coord(rng() % 550);
-    }
-  const Diagram d = voronoi_of_polygons(tracks).diagram;
+  const Diagram d = voronoi_of_polygons(tracks(5, 60, 40000)).diagram;
   const Stretches all = gauge_stretches(d);
   ASSERT_GT(all.size(), 10000u);  // a third dropped is tens of pages of each array
   std::vector<bool> keep(all.size());
@@ -255,16 +256,8 @@ TEST(Stretches, KeepingSomeKeepsThemWhole) {
   for (std::size_t i = 0; i < all.size(); ++i) {
     if (!keep[i]) continue;
     ASSERT_LT(k, kept.size());
-    const Stretch a = all[i], b = kept[k++];
-    ASSERT_EQ(a.a, b.a);
-    ASSERT_EQ(a.b, b.b);
-    ASSERT_EQ(a.length, b.length);
-    ASSERT_EQ(a.path.size(), b.path.size());
-    for (std::size_t j = 0; j < a.path.size(); ++j) {
-      ASSERT_EQ(a.path[j].x, b.path[j].x);
-      ASSERT_EQ(a.path[j].y, b.path[j].y);
-      ASSERT_EQ(a.clearance[j], b.clearance[j]);
-    }
+    expect_same(all[i], kept[k++]);
+    if (HasFatalFailure()) return;
   }
   EXPECT_EQ(k, kept.size());
 
