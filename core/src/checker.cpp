@@ -133,12 +133,14 @@ struct Checker::Impl {
   // piece marks the pairs it crosses. An index over the pieces instead would cost more memory
   // than the pieces themselves on a large layer, and would need them all at once.
   void draw_pairs(double typical_clearance) {
-    double bx1 = INFINITY, by1 = INFINITY, bx2 = -INFINITY, by2 = -INFINITY;
+    double bx1 = INFINITY, by1 = INFINITY, bx2 = -INFINITY, by2 = -INFINITY, scale = 1;
     for (const Site& t : S)
       for (const Point& p : {t.a, t.b}) {
         bx1 = std::min(bx1, double(p.x)), by1 = std::min(by1, double(p.y));
         bx2 = std::max(bx2, double(p.x)), by2 = std::max(by2, double(p.y));
+        scale = std::max({scale, std::fabs(double(p.x)), std::fabs(double(p.y))});
       }
+    tol = opt.tolerance > 0 ? opt.tolerance : 1e-6 + 1e-9 * scale;
     std::mt19937_64 rng(opt.seed);
     const double mx = std::max(1.0, 0.1 * std::max(bx2 - bx1, by2 - by1));
     std::uniform_real_distribution<double> ux(bx1 - mx, bx2 + mx), uy(by1 - mx, by2 + mx), ua(0, 2 * M_PI);
@@ -267,10 +269,6 @@ struct Checker::Impl {
 Checker::Checker(const Sites& sites, const Box& clip, double typical_clearance, const CheckOptions& opt) {
   if (sites.sites.empty()) return;
   impl_ = std::make_unique<Impl>(sites.sites, clip, opt);
-  double scale = 1;
-  for (const Site& t : sites.sites)
-    for (const Point& p : {t.a, t.b}) scale = std::max({scale, std::fabs(double(p.x)), std::fabs(double(p.y))});
-  impl_->tol = opt.tolerance > 0 ? opt.tolerance : 1e-6 + 1e-9 * scale;
   impl_->draw_pairs(typical_clearance);
 }
 
@@ -282,12 +280,16 @@ void Checker::add(const Piece* pieces, std::size_t n) {
 
 CheckReport Checker::finish() { return impl_ ? impl_->finish() : CheckReport{}; }
 
+double median_clearance(std::vector<double> sample) {
+  if (sample.empty()) return 1.0;
+  std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
+  return sample[sample.size() / 2];
+}
+
 double typical_clearance(const std::vector<Piece>& pieces) {
   std::vector<double> clear;
   for (std::size_t i = 0; i < pieces.size(); i += 1 + pieces.size() / 1000) clear.push_back(pieces[i].d1);
-  if (clear.empty()) return 1.0;
-  std::nth_element(clear.begin(), clear.begin() + clear.size() / 2, clear.end());
-  return clear[clear.size() / 2];
+  return median_clearance(std::move(clear));
 }
 
 CheckReport check_diagram(const Diagram& d, const CheckOptions& opt) {

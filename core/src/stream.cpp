@@ -118,12 +118,6 @@ void merge(const Runs& runs, const Pair& pair) {
   if (!group.empty()) pair(group);
 }
 
-double median(std::vector<double>& v) {
-  if (v.empty()) return 1.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
 
 StreamResult stream_voronoi(std::vector<Polygon>&& polygons, const DiagramOptions& opt, const StreamOutputs& out) {
@@ -173,9 +167,8 @@ StreamResult stream_voronoi(std::vector<Polygon>&& polygons, const DiagramOption
   if (opt.check) {
     CheckOptions co = opt.checker;
     co.threads = opt.build.threads;
-    checker = std::make_unique<Checker>(d.sites, d.clip, median(clear), co);
+    checker = std::make_unique<Checker>(d.sites, d.clip, median_clearance(std::move(clear)), co);
   }
-  std::vector<double>().swap(clear);
   std::unique_ptr<PiecesCsv> csv;
   if (!out.csv.empty()) csv = std::make_unique<PiecesCsv>(out.csv, out.dbu);
   std::unique_ptr<GdsWriter> gds;

@@ -53,7 +53,9 @@ class Checker {
   std::unique_ptr<Impl> impl_;
 };
 
-// The median clearance at the start of a sample of about a thousand pieces.
+// The median of a sample of clearances (1 if there is none), and that of the clearances at the
+// start of about a thousand of the pieces.
+double median_clearance(std::vector<double> sample);
 double typical_clearance(const std::vector<Piece>& pieces);
 
 }  // namespace linf
