@@ -4,8 +4,9 @@
 # of the same polygons (its own process, with a deadline: it can hang or crash) and against
 # KLayout's width + space checks (metrics Square) on the same layer.
 #   python3 bench/bench_flow.py [--generated 10000,100000,1000000] [--shared] [--threads]
-#                               [--tile DBU] [--deadline SECONDS]
+#                               [--tile DBU] [--deadline SECONDS] [--reach]
 # --threads adds the diagram with one thread against two (inputs up to 20,000 polygons).
+# --reach adds KLayout's checks at the gauges' own reach (see flow_one.py) and that ratio.
 import json
 import os
 import subprocess
@@ -37,6 +38,8 @@ if "--shared" in args:
 def one(inp, layer, cell, markers, threads, drc, polygons_json=None):
     cmd = ["klayout", "-b", "-r", os.path.join(repo, "bench", "flow_one.py"), "-rd", "input=" + inp, "-rd",
            "layer=" + layer, "-rd", "threads=%d" % threads, "-rd", "drc=%d" % drc, "-rd", "tile=" + tile]
+    if drc and "--reach" in args:
+        cmd += ["-rd", "reach=1"]
     if cell:
         cmd += ["-rd", "cell=" + cell]
     if markers:
@@ -62,10 +65,13 @@ def cgal(polygons_json):
     return float(r.stdout.split()[-1]), ""
 
 
+reach = "--reach" in args
 print("| input | polygons | segments | load | diagram | gauges | selection | split | tiles (largest, sites) | "
-      "peak MB | CGAL construction | diagram / CGAL | width+space | flow / (width+space) |%s"
-      % (" diagram 1 thread / 2 threads |" if "--threads" in args else ""))
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|%s" % ("---|" if "--threads" in args else ""))
+      "peak MB | CGAL construction | diagram / CGAL | width+space | flow / (width+space) |%s%s"
+      % (" width+space at the gauges' reach (t width, space) | flow / that |" if reach else "",
+         " diagram 1 thread / 2 threads |" if "--threads" in args else ""))
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|%s%s"
+      % ("---|---|" if reach else "", "---|" if "--threads" in args else ""))
 for inp, layer, cell, markers in inputs:
     with tempfile.TemporaryDirectory() as tmp:
         pj = os.path.join(tmp, "polygons.json")
@@ -79,6 +85,9 @@ for inp, layer, cell, markers in inputs:
               s["gauges"], s["selection"], s["split"], tl["tiles"], tl["largest_tile_sites"], two["sites"],
               "%.0f (load %.0f)" % (two["peak_rss_mb"], two["peak_mb_after"]["load"]), "%.2f s" % t_cgal if t_cgal else why, "%.1f" % (s["diagram"] / t_cgal) if t_cgal else "-",
               s["klayout_width_space"], flow / s["klayout_width_space"]))
+    if reach:
+        row += " %.2f s (%d, %d DBU) | %.2f |" % (s["klayout_width_space_reach"], two["reach_dbu"][0], two["reach_dbu"][1],
+                                                 flow / s["klayout_width_space_reach"])
     if "--threads" in args:
         if two["polygons"] <= 20000:
             single = one(inp, layer, cell, markers, 1, 0)

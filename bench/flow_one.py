@@ -1,9 +1,13 @@
 # One input of bench/bench_flow.py, in its own KLayout process (so that its peak memory is its
 # own): prints one JSON line with the stage times, counts and peak memory.
 #   klayout -b -r bench/flow_one.py -rd input=FILE|generated:N -rd layer=L/D [-rd cell=NAME]
-#           [-rd markers=SPEC] [-rd threads=N] [-rd tile=DBU] [-rd drc=1] [-rd polygons_json=FILE]
+#           [-rd markers=SPEC] [-rd threads=N] [-rd tile=DBU] [-rd drc=1] [-rd reach=1]
+#           [-rd polygons_json=FILE]
 # tile: the builder's tile side in DBU (default -1, automatic; 0 one tile). polygons_json: also
-# write the merged polygons there, for CGAL's construction in another process.
+# write the merged polygons there, for CGAL's construction in another process. drc=1 times
+# KLayout's width + space checks at t = 2 x the narrowest width; reach=1 also at the gauges' own
+# reach (width above the widest width, space above the widest space the gauges report: what the
+# checks need to find every width and space the gauges measure).
 import json
 import os
 import random
@@ -107,6 +111,15 @@ if g.get("drc") == "1":
     fresh.width_check(int(2 * w0), False, pya.Region.Square).size()
     fresh.space_check(int(2 * w0), False, pya.Region.Square).size()
     t["klayout_width_space"] = time.perf_counter() - t0
+if g.get("reach") == "1":
+    w_max = max(x.cd for x in gs if x.type == "internal")
+    s_max = max(x.cd for x in gs if x.type == "external")
+    t0 = time.perf_counter()
+    fresh = pya.Region(cell.begin_shapes_rec(li))
+    fresh.width_check(int(w_max) + 1, False, pya.Region.Square).size()
+    fresh.space_check(int(s_max) + 1, False, pya.Region.Square).size()
+    t["klayout_width_space_reach"] = time.perf_counter() - t0
+    out["reach_dbu"] = [int(w_max) + 1, int(s_max) + 1]
 out["peak_rss_mb"] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 out["peak_mb_after"] = peak
 print("RESULT " + json.dumps(out))

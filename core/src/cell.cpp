@@ -4,20 +4,30 @@
 
 namespace linf::detail {
 
-Cell clip(const Cell& in, const Affine& h) {
+namespace {
+
+// The values of h at the cell's vertices, those within rounding of zero made zero (on the
+// line); false if every vertex is on the kept side, so that nothing needs clipping.
+using Values = boost::container::small_vector<double, 10>;
+bool values_at(const Cell& c, const Affine& h, Values& val) {
+  const std::size_t n = c.v.size();
+  val.resize(n);
+  bool cuts = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    double v = h.at(c.v[i].x, c.v[i].y);
+    if (std::fabs(v) <= h.err(c.v[i].x, c.v[i].y) * 16) v = 0;
+    val[i] = v;
+    cuts |= v < 0;
+  }
+  return cuts;
+}
+
+// The part of `in` where the values are >= 0, some being < 0.
+Cell clipped(const Cell& in, const Values& val) {
   const std::size_t n = in.v.size();
   Cell out;
-  if (n < 3) return out;
-  boost::container::small_vector<double, 10> val(n);
-  bool all_in = true, all_out = true;
-  for (std::size_t i = 0; i < n; ++i) {
-    double v = h.at(in.v[i].x, in.v[i].y);
-    if (std::fabs(v) <= h.err(in.v[i].x, in.v[i].y) * 16) v = 0;
-    val[i] = v;
-    all_in &= v >= 0;
-    all_out &= v <= 0;
-  }
-  if (all_in) return in;
+  bool all_out = true;
+  for (double v : val) all_out &= v <= 0;
   if (all_out) return out;
   out.v.reserve(n + 1);
   // Rounding can repeat a vertex: such repeats are dropped as they come.
@@ -38,12 +48,18 @@ Cell clip(const Cell& in, const Affine& h) {
   return out;
 }
 
+}  // namespace
+
+Cell clip(const Cell& in, const Affine& h) {
+  if (in.v.size() < 3) return Cell{};
+  Values val;
+  return values_at(in, h, val) ? clipped(in, val) : in;
+}
+
 bool clip_in_place(Cell& c, const Affine& h) {
-  for (const Vec2& p : c.v)
-    if (h.at(p.x, p.y) < -16 * h.err(p.x, p.y)) {
-      c = clip(c, h);
-      return !c.empty();
-    }
+  if (c.v.size() < 3) return false;
+  Values val;
+  if (values_at(c, h, val)) c = clipped(c, val);
   return !c.empty();
 }
 

@@ -307,6 +307,21 @@ class Builder {
     if (mk < mr) lc.ref = int(k), lc.ref_at.clear();
   }
 
+  // Is piece j of fn below another piece at every vertex of the cell, beyond rounding? Both are
+  // affine, so it is below it on the whole cell: j is nowhere the maximum, and clipping the
+  // cell down to where it is would only find that out, one copy of the cell at a time.
+  static bool never_highest(const DistFn& fn, int j, const Cell& c) {
+    for (int i = 0; i < fn.n; ++i) {
+      if (i == j) continue;
+      const Affine h = minus(fn.piece[j], fn.piece[i]);
+      bool below = true;
+      for (const Vec2& p : c.v)
+        if (!(h.at(p.x, p.y) < -16 * h.err(p.x, p.y))) { below = false; break; }
+      if (below) return true;
+    }
+    return false;
+  }
+
   // Splits `cells` so that site k (of C) is affine on each: by f, where it is present (dropping
   // it from cells where it is absent), or by g.
   void split_by(std::vector<LocalCell>& cells, const std::vector<int>& C, std::size_t k, bool use_g) const {
@@ -333,9 +348,10 @@ class Builder {
         continue;
       }
       for (int jj = 0; jj < fn.n; ++jj) {
+        if (never_highest(fn, jj, lc.cell)) continue;
         Cell c = lc.cell;
-        for (int i = 0; i < fn.n && !c.empty(); ++i)
-          if (i != jj) c = detail::clip(c, minus(fn.piece[jj], fn.piece[i]));
+        for (int i = 0; i < fn.n; ++i)
+          if (i != jj && !detail::clip_in_place(c, minus(fn.piece[jj], fn.piece[i]))) break;
         if (c.empty()) continue;
         LocalCell sub{std::move(c), lc.af, lc.ag, lc.ref};
         (use_g ? sub.ag : sub.af)[k] = static_cast<signed char>(jj);
@@ -365,13 +381,19 @@ class Builder {
 
     for (LocalCell& lc : cells) {
       // Sites whose L-inf pieces coincide here need the L1 tie-break, hence affine L1 pieces.
-      std::vector<LocalCell> sub{lc};
-      std::vector<char> tied(k, 0);
-      for (std::size_t i = 0; i < k; ++i)
+      boost::container::small_vector<char, 16> tied(k, 0);
+      bool any = false;
+      for (std::size_t i = 0; i < k; ++i) {
+        if (lc.af[i] < 0) continue;
+        const Affine& fi = f_[C[i]].piece[lc.af[i]];
         for (std::size_t j = i + 1; j < k; ++j)
-          if (lc.af[i] >= 0 && lc.af[j] >= 0 &&
-              detail::same_affine(f_[C[i]].piece[lc.af[i]], f_[C[j]].piece[lc.af[j]]))
-            tied[i] = tied[j] = 1;
+          if (lc.af[j] >= 0 && detail::same_affine(fi, f_[C[j]].piece[lc.af[j]])) tied[i] = tied[j] = 1, any = true;
+      }
+      if (!any) {
+        regions(lc, C);
+        continue;
+      }
+      std::vector<LocalCell> sub{lc};
       for (std::size_t i = 0; i < k; ++i)
         if (tied[i]) split_by(sub, C, i, true);
       for (const LocalCell& c : sub) regions(c, C);
