@@ -153,13 +153,14 @@ py::dict gauge_columns(const Sites& sites, Gauges& g, bool with_paths) {
   // layer both are gigabytes, and nothing reads the records afterwards.
   std::size_t done = 0, released = 0;
   for (const Gauge& x : g.gauges) {
-    for (double v : {x.p.x, x.p.y, x.q.x, x.q.y, x.at.x, x.at.y, x.cd, x.score, x.norm_score, x.tiebreak}) {
+    const MeasurementLine m = measurement_line(sites, x);
+    for (double v : {m.p.x, m.p.y, m.q.x, m.q.y, x.at.x, x.at.y, x.cd, x.score, g.norm_score(x), x.tiebreak}) {
       std::memcpy(rd, &v, sizeof v);
       rd += sizeof v;
     }
     const Site& a = S[x.a];
     const Site& b = S[x.b];
-    for (Coord v : {Coord(x.rank), Coord(x.teeth), Coord(x.a), Coord(x.b), a.a.x, a.a.y, a.b.x, a.b.y, b.a.x, b.a.y,
+    for (Coord v : {Coord(done + 1), Coord(x.teeth), Coord(x.a), Coord(x.b), a.a.x, a.a.y, a.b.x, a.b.y, b.a.x, b.a.y,
                     b.b.x, b.b.y, Coord(x.type)}) {
       if (v < INT32_MIN || v > INT32_MAX) throw py::value_error("coordinates beyond 32 bits (layouts have 32)");
       const std::int32_t w = std::int32_t(v);
@@ -390,7 +391,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
         files.report(d);
         if (!gauges_csv.empty()) {
           py::gil_scoped_release unlocked;
-          write_gauges_csv(g.gauges, dbu, gauges_csv);
+          write_gauges_csv(diagram.sites, g, dbu, gauges_csv);
         }
         d["seconds"].cast<py::dict>()["gauges"] = seconds;
         py::dict res;

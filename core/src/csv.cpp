@@ -20,20 +20,23 @@ void append_fixed6(std::string& line, double x) {
 }
 }  // namespace
 
-void write_gauges_csv(const std::vector<Gauge>& gauges, double dbu, const std::string& path) {
+void write_gauges_csv(const Sites& sites, const Gauges& gauges, double dbu, const std::string& path) {
   std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
   if (!f) throw std::runtime_error("cannot write " + path);
   std::fputs("id,type,x1,y1,x2,y2,cx,cy,cd,score,norm_score,tiebreak,rank\r\n", f.get());
   std::string line;
-  for (const Gauge& g : gauges) {
-    line.assign(std::to_string(g.rank));
+  std::size_t rank = 0;
+  for (const Gauge& g : gauges.gauges) {
+    const std::string id = std::to_string(++rank);
+    const MeasurementLine m = measurement_line(sites, g);
+    line.assign(id);
     line.push_back(',');
     line.append(gauge_type_name(g.type));
-    for (double v : {g.p.x, g.p.y, g.q.x, g.q.y, g.at.x, g.at.y, g.cd, g.score}) append_fixed6(line, v * dbu);
-    append_fixed6(line, g.norm_score);
+    for (double v : {m.p.x, m.p.y, m.q.x, m.q.y, g.at.x, g.at.y, g.cd, g.score}) append_fixed6(line, v * dbu);
+    append_fixed6(line, gauges.norm_score(g));
     append_fixed6(line, g.tiebreak * dbu);
     line.push_back(',');
-    line.append(std::to_string(g.rank));
+    line.append(id);
     line.append("\r\n");
     std::fwrite(line.data(), 1, line.size(), f.get());
   }

@@ -176,7 +176,7 @@ Common minimum_over(const std::vector<std::pair<const Along*, double>>& parts) {
   return r;
 }
 
-Gauge measured(const Sites& sites, GaugeType type, const Vec2& at, double clearance, std::int32_t a,
+Gauge measured(GaugeType type, const Vec2& at, double clearance, std::int32_t a,
                std::int32_t b) {
   Gauge g;
   g.type = type;
@@ -184,8 +184,6 @@ Gauge measured(const Sites& sites, GaugeType type, const Vec2& at, double cleara
   g.cd = 2 * clearance;
   g.a = a;
   g.b = b;
-  g.p = nearest_on(sites.sites[a], at);
-  g.q = nearest_on(sites.sites[b], at);
   return g;
 }
 
@@ -233,7 +231,7 @@ std::vector<bool> redundant(const Sites& s, const Stretches& all, const std::vec
 }
 
 // A width or a space: at the centre of the stretch's part of least clearance.
-Gauge plain_gauge(const Sites& sites, const Stretch& st, std::int32_t index) {
+Gauge plain_gauge(const Stretch& st, std::int32_t index) {
   std::vector<std::pair<double, double>> v;
   double arc = 0;
   for (std::size_t i = 0; i < st.path.size(); ++i) {
@@ -241,7 +239,7 @@ Gauge plain_gauge(const Sites& sites, const Stretch& st, std::int32_t index) {
     v.push_back({arc, st.clearance[i]});
   }
   auto [t, c] = centre_of_minimum(v);
-  Gauge g = measured(sites, st.kind == PieceKind::Internal ? GaugeType::Internal : GaugeType::External,
+  Gauge g = measured(st.kind == PieceKind::Internal ? GaugeType::Internal : GaugeType::External,
                      point_at_arc(st, t), c, st.a, st.b);
   g.score = g.cd;
   g.tiebreak = st.length;
@@ -306,7 +304,7 @@ void context_gauges(const Sites& sites, const Stretches& all, std::int32_t iy, c
     if (neighbour >= 0) {
       Vec2 at;
       const double cy = base.clearance(best.t, &at);
-      Gauge g = measured(sites, GaugeType::Sandwich, at, cy, ey.a, ey.b);
+      Gauge g = measured(GaugeType::Sandwich, at, cy, ey.a, ey.b);
       g.score = 0.5 * best.value;
       g.tiebreak = best.length;
       g.stretch = iy;
@@ -337,7 +335,7 @@ void context_gauges(const Sites& sites, const Stretches& all, std::int32_t iy, c
     Vec2 at;
     const double cy = base.clearance(best.t, &at);
     const bool comb = shapes.size() >= 2;
-    Gauge g = measured(sites, comb ? GaugeType::Comb : GaugeType::T, at, cy, ey.a, ey.b);
+    Gauge g = measured(comb ? GaugeType::Comb : GaugeType::T, at, cy, ey.a, ey.b);
     g.score = (comb ? 0.75 : 0.80) * best.value;
     g.tiebreak = best.length;
     g.stretch = iy;
@@ -372,6 +370,10 @@ StretchFilter measurable_pairs(const Sites& s) {
 }
 
 }  // namespace
+
+MeasurementLine measurement_line(const Sites& sites, const Gauge& g) {
+  return {nearest_on(sites.sites[g.a], g.at), nearest_on(sites.sites[g.b], g.at)};
+}
 
 bool measurable_pair(const Sites& sites, std::int32_t a, std::int32_t b, PieceKind kind) {
   return measurable(sites, a, b, kind);
@@ -424,17 +426,12 @@ Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& op
   r.gauges.reserve(most);
   for (std::int32_t i = 0; i < m; ++i) {
     const Stretch s = r.stretches[i];
-    r.gauges.push_back(plain_gauge(sites, s, i));
+    r.gauges.push_back(plain_gauge(s, i));
     if (s.kind == PieceKind::Internal && !sites.sites[s.a].is_point() && !sites.sites[s.b].is_point())
       context_gauges(sites, r.stretches, i, external_at, opt, r.gauges);
   }
   std::sort(r.gauges.begin(), r.gauges.end(), before);
-  double top = 0;
-  for (const Gauge& g : r.gauges) top = std::max(top, g.score);
-  for (std::size_t i = 0; i < r.gauges.size(); ++i) {
-    r.gauges[i].rank = std::int32_t(i + 1);
-    r.gauges[i].norm_score = top > 0 ? r.gauges[i].score / top : 0.0;
-  }
+  for (const Gauge& g : r.gauges) r.top_score = std::max(r.top_score, g.score);
   return r;
 }
 

@@ -71,7 +71,7 @@ Outputs in_memory(const std::vector<Polygon>& polys, const DiagramOptions& o, co
     return measurable_pair(r.diagram.sites, a, b, k);
   }));
   const Gauges g = gauges_of(r.diagram);
-  write_gauges_csv(g.gauges, 0.001, dir + "_mem_gauges.csv");
+  write_gauges_csv(r.diagram.sites, g, 0.001, dir + "_mem_gauges.csv");
   out.gauges = slurp(dir + "_mem_gauges.csv");
   std::remove((dir + "_mem_gauges.csv").c_str());
   return out;
@@ -93,7 +93,7 @@ Outputs streamed(std::vector<Polygon> polys, const DiagramOptions& o, const std:
   const Sites sites = r.diagram.sites;
   out.stretches = dump(r.stretches);
   const Gauges g = gauges_of(sites, std::move(r.stretches));
-  write_gauges_csv(g.gauges, 0.001, dir + "_str_gauges.csv");
+  write_gauges_csv(sites, g, 0.001, dir + "_str_gauges.csv");
   out.gauges = slurp(dir + "_str_gauges.csv");
   std::remove((dir + "_str_gauges.csv").c_str());
   return out;

@@ -34,6 +34,6 @@ class PiecesCsv {
 };
 
 // Gauges in rank order; throws std::runtime_error if the file cannot be written.
-void write_gauges_csv(const std::vector<Gauge>& gauges, double dbu, const std::string& path);
+void write_gauges_csv(const Sites& sites, const Gauges& gauges, double dbu, const std::string& path);
 
 }  // namespace linf

@@ -17,19 +17,24 @@ enum class GaugeType : std::uint8_t { Internal, External, Sandwich, Comb, T };
 
 const char* gauge_type_name(GaugeType t);
 
+// One gauge. Held by the million on a full layer, so only what cannot be derived is kept: the
+// measurement line comes from the two sites (measurement_line), the rank from the position in
+// Gauges::gauges and the normalised score from Gauges::top_score.
 struct Gauge {
-  GaugeType type = GaugeType::Internal;
   Vec2 at;               // the gauge point, on the diagram
-  Vec2 p, q;             // the measurement line: points of the two measured features nearest to `at`
   double cd = 0;         // the critical dimension measured: twice the L-inf clearance at `at`
   double score = 0;      // lower = more critical
-  double norm_score = 0; // score / the highest score among the gauges returned
   double tiebreak = 0;   // extension (internal, external) or overlap (sandwich, comb, T)
-  std::int32_t rank = 0; // 1 = most critical
   std::int32_t a = -1, b = -1;     // the two measured sites
   std::int32_t stretch = -1;       // the stretch the gauge sits on
   std::int32_t neighbour = -1;     // sandwich/comb/T: the critical neighbour's external stretch
   std::int32_t teeth = 0;          // comb/T: teeth on the critical side
+  GaugeType type = GaugeType::Internal;
+};
+
+// The measurement line: the points of the two measured features nearest to the gauge point.
+struct MeasurementLine {
+  Vec2 p, q;
 };
 
 struct GaugeOptions {
@@ -45,10 +50,16 @@ struct GaugeOptions {
 struct Gauges {
   Stretches stretches;        // those the gauges lie on (Gauge::stretch, Gauge::neighbour)
   std::size_t measurable = 0; // the measurable stretches considered (see gauges_of)
-  std::vector<Gauge> gauges;  // ranked
+  std::vector<Gauge> gauges;  // ranked: gauges[i] has rank i + 1, the most critical first
+  double top_score = 0;       // the highest score among them
   double typical_width = 0;   // extension-weighted median width of the internal gauges
   double space_limit = 0;     // widest space reported (infinite if no limit)
+
+  // score / the highest score among the gauges returned (0 if every score is 0).
+  double norm_score(const Gauge& g) const { return top_score > 0 ? g.score / top_score : 0.0; }
 };
+
+MeasurementLine measurement_line(const Sites& sites, const Gauge& g);
 
 Gauges gauges_of(const Diagram& d, const GaugeOptions& opt = {});
 

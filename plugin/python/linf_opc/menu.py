@@ -47,14 +47,20 @@ class _Stop(Exception):
     """Raised after the person has been told why the action cannot go on."""
 
 
+def _open_view():
+    """(main window, view) with a layout open, or _Stop after a message."""
+    mw = pya.Application.instance().main_window()
+    view = mw.current_view()
+    if view is None or not view.active_cellview().is_valid():
+        _warn("Open a layout first.")
+        raise _Stop()
+    return mw, view
+
+
 def _layer_polygons():
     """(main window, view, cellview, layer info, polygons) of the current layer, or _Stop
     after a message: no layout, no layer selected, empty layer."""
-    mw = pya.Application.instance().main_window()
-    view = mw.current_view()
-    if view is None:
-        _warn("Open a layout first.")
-        raise _Stop()
+    mw, view = _open_view()
     sel = current_layer(view)
     if sel is None:
         _warn("Select a drawing layer in the layer list first.")
@@ -214,11 +220,7 @@ def run_flow():
     """Run OPC pattern flow...: the dialog, then diagram -> gauges -> selection -> split written
     to the chosen folder, the windows drawn (one undo step) and the results in the marker browser."""
     def action(progress):
-        mw = pya.Application.instance().main_window()
-        view = mw.current_view()
-        if view is None or not view.active_cellview().is_valid():
-            _warn("Open a layout first.")
-            raise _Stop()
+        mw, view = _open_view()
         cv = view.active_cellview()
         ly = cv.layout()
         layers = ["%d/%d" % (i.layer, i.datatype) for i in (ly.get_info(k) for k in ly.layer_indexes())
@@ -262,11 +264,7 @@ def farthest_of_selection():
     """Farthest Voronoi of selection: the selected shapes, or the current layer's shapes in the
     visible area; the diagram on L/240, the smallest touching square on L/241 (one undo step)."""
     def action(progress):
-        mw = pya.Application.instance().main_window()
-        view = mw.current_view()
-        if view is None or not view.active_cellview().is_valid():
-            _warn("Open a layout first.")
-            raise _Stop()
+        mw, view = _open_view()
         cv = view.active_cellview()
         ly = cv.layout()
         shapes, layers = [], set()
