@@ -199,25 +199,33 @@ class Builder {
   // and some piece of g_t above g_u. Allowances: tol() at each corner.
   bool dominated(const Reference& r, int t) const {
     if (r.u < 0 || t == r.u) return false;
-    const double mf = piece_margin(f_[t], r.c, 4, r.fu, r.e);
-    if (mf > 1) return true;
-    if (mf < -1) return false;
-    return piece_margin(g_[t], r.c, 4, r.gu, r.e) > 1;
+    switch (against(f_[t], r.c, 4, r.fu, r.e)) {
+      case Side::Above: return true;
+      case Side::Below: return false;
+      case Side::Neither: break;
+    }
+    return against(g_[t], r.c, 4, r.gu, r.e) == Side::Above;
   }
 
-  // How far the highest piece of fn stays above `ref` at the points, in allowances: the
-  // largest over pieces of the least (piece - ref) / allowance. > 1: some piece is above ref
-  // at every point; < -1: every piece is below it somewhere.
-  static double piece_margin(const DistFn& fn, const Vec2* pts, std::size_t n, const double* ref,
-                             const double* allowance) {
-    double best = -INFINITY;
+  // Where the pieces of fn stand against `ref` at the points, beyond an allowance at each:
+  // Above if some piece is above it at every point, Below if every piece is below it at some
+  // point. Comparisons only: this runs for every candidate of every box.
+  enum class Side { Above, Below, Neither };
+  static Side against(const DistFn& fn, const Vec2* pts, std::size_t n, const double* ref,
+                      const double* allowance) {
+    bool below = true;
     for (int i = 0; i < fn.n; ++i) {
-      double lo = INFINITY;
-      for (std::size_t k = 0; k < n && lo > best; ++k)
-        lo = std::min(lo, (fn.piece[i].at(pts[k].x, pts[k].y) - ref[k]) / allowance[k]);
-      best = std::max(best, lo);
+      bool above = true, under = false;
+      for (std::size_t k = 0; k < n; ++k) {
+        const double d = fn.piece[i].at(pts[k].x, pts[k].y) - ref[k];
+        above = above && d > allowance[k];
+        under = under || d < -allowance[k];
+        if (!above && under) break;
+      }
+      if (above) return Side::Above;
+      below = below && under;
     }
-    return best;
+    return below ? Side::Below : Side::Neither;
   }
 
   // Far from the sites, whole groups share one affine L-inf function over the box (a
@@ -291,7 +299,7 @@ class Builder {
       lc.ref_at.resize(v.size()), lc.tol_at.resize(v.size());
       for (std::size_t k = 0; k < v.size(); ++k) lc.ref_at[k] = q.at(v[k].x, v[k].y), lc.tol_at[k] = tol(v[k]);
     }
-    return piece_margin(f_[C[t]], v.data(), v.size(), lc.ref_at.data(), lc.tol_at.data()) > 1;
+    return against(f_[C[t]], v.data(), v.size(), lc.ref_at.data(), lc.tol_at.data()) == Side::Above;
   }
 
   // The reference of a cell after site k became affine on it: whichever of the two has the
