@@ -632,11 +632,15 @@ class Builder {
       double smin = INFINITY;
       for (std::size_t i = 0; i < tied.size(); ++i)
         smin = std::min(smin, sl[i] = slope(f_[tied[i]], m, un, f_[tied[i]].at(m.x, m.y), tol(m)));
-      boost::container::small_vector<Profile, 4> g;
-      for (std::size_t i = 0; i < tied.size(); ++i)
-        if (sl[i] <= smin + 1e-12) g.push_back(profile(g_[tied[i]], p, q));
+      std::size_t least = 0;
+      for (std::size_t i = 0; i < tied.size(); ++i) least += sl[i] <= smin + 1e-12;
       boost::container::small_vector<double, 16> cuts{0.0, 1.0};
-      if (g.size() > 1) envelope_cuts(g, cuts);
+      if (least > 1) {  // with one site alone at the least slope there is no L1 envelope to walk
+        boost::container::small_vector<Profile, 4> g;
+        for (std::size_t i = 0; i < tied.size(); ++i)
+          if (sl[i] <= smin + 1e-12) g.push_back(profile(g_[tied[i]], p, q));
+        envelope_cuts(g, cuts);
+      }
       std::sort(cuts.begin(), cuts.end());
       // Neighbouring parts with the same owner beyond go out as one piece.
       auto at = [&](double s) { return Vec2{p.x + s * (q.x - p.x), p.y + s * (q.y - p.y)}; };
@@ -657,26 +661,26 @@ class Builder {
 
   void emit_piece(const Vec2& p, const Vec2& q, int t, int u) {
     if (u == t || t > u) return;  // no edge, or the other side reports it
-    if (std::fabs(f_[t].at(p.x, p.y) - f_[u].at(p.x, p.y)) > tol(p) ||
-        std::fabs(f_[t].at(q.x, q.y) - f_[u].at(q.x, q.y)) > tol(q))
-      return;
+    const double dp = f_[t].at(p.x, p.y), dq = f_[t].at(q.x, q.y);
+    if (std::fabs(dp - f_[u].at(p.x, p.y)) > tol(p) || std::fabs(dq - f_[u].at(q.x, q.y)) > tol(q)) return;
     double t0, t1;  // the far-field pass keeps only what lies outside the inner box
     if (has_hole_ && clip_to_box(p.x, p.y, q.x, q.y, hole_, t0, t1) && t1 > t0) {
       const double dx = q.x - p.x, dy = q.y - p.y;
       const Vec2 a{p.x + t0 * dx, p.y + t0 * dy}, b{p.x + t1 * dx, p.y + t1 * dy};
-      if (t0 > 1e-12) add_piece(p, a, t, u);
-      if (t1 < 1 - 1e-12) add_piece(b, q, t, u);
+      if (t0 > 1e-12) add_piece(p, a, t, u, dp, f_[t].at(a.x, a.y));
+      if (t1 < 1 - 1e-12) add_piece(b, q, t, u, f_[t].at(b.x, b.y), dq);
       return;
     }
-    add_piece(p, q, t, u);
+    add_piece(p, q, t, u, dp, dq);
   }
 
-  void add_piece(const Vec2& p, const Vec2& q, int t, int u) {
+  // d1, d2: the clearance at p and q.
+  void add_piece(const Vec2& p, const Vec2& q, int t, int u, double d1, double d2) {
     Piece pc;
     pc.p = p, pc.q = q;
     pc.a = t, pc.b = u;
-    pc.d1 = f_[t].at(p.x, p.y);
-    pc.d2 = f_[t].at(q.x, q.y);
+    pc.d1 = d1;
+    pc.d2 = d2;
     out.push_back(pc);
   }
 
@@ -700,23 +704,34 @@ class Builder {
     const double tl = tol(m);
     double fmin = INFINITY;
     for (int t : C) fmin = std::min(fmin, f_[t].at(m.x, m.y));
-    int best = -1;
-    double bs = 0, bg = 0, bgs = 0;
+    // The L1 value and slope only where the L-inf slopes tie (computed at most once a site).
+    struct Candidate {
+      int t = -1;
+      double s = 0, gv = 0, gs = 0;
+      bool has_g = false;
+    };
+    auto with_g = [&](Candidate& c) {
+      if (!c.has_g) c.gv = g_[c.t].at(m.x, m.y), c.gs = slope(g_[c.t], m, u, c.gv, tl), c.has_g = true;
+    };
+    Candidate best;
     for (int t : C) {
       const double fv = f_[t].at(m.x, m.y);
       if (fv > fmin + tl) continue;
-      const double s = slope(f_[t], m, u, fv, tl);
-      const double gv = g_[t].at(m.x, m.y);
-      const double gs = slope(g_[t], m, u, gv, tl);
+      Candidate c;
+      c.t = t;
+      c.s = slope(f_[t], m, u, fv, tl);
       bool better;
-      if (best < 0) better = true;
-      else if (std::fabs(s - bs) > 1e-12) better = s < bs;
-      else if (std::fabs(gv - bg) > tl) better = gv < bg;
-      else if (std::fabs(gs - bgs) > 1e-12) better = gs < bgs;
-      else better = rank_before(t, best);
-      if (better) best = t, bs = s, bg = gv, bgs = gs;
+      if (best.t < 0) better = true;
+      else if (std::fabs(c.s - best.s) > 1e-12) better = c.s < best.s;
+      else {
+        with_g(c), with_g(best);
+        if (std::fabs(c.gv - best.gv) > tl) better = c.gv < best.gv;
+        else if (std::fabs(c.gs - best.gs) > 1e-12) better = c.gs < best.gs;
+        else better = rank_before(t, best.t);
+      }
+      if (better) best = c;
     }
-    return best;
+    return best.t;
   }
 
 
