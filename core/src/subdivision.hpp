@@ -334,13 +334,15 @@ class Builder {
   // it from cells where it is absent), or by g.
   void split_by(std::vector<LocalCell>& cells, const std::vector<int>& C, std::size_t k, bool use_g) const {
     const DistFn& fn = use_g ? g_[C[k]] : f_[C[k]];
-    std::vector<LocalCell> next;
-    next.reserve(cells.size());
-    for (LocalCell& lc : cells) {
+    // First the cells where k is absent or affine, in place; most sites split no cell, and then
+    // the cells are not moved at all.
+    boost::container::small_vector<char, 32> split(cells.size(), 0);
+    bool any = false;
+    for (std::size_t ci = 0; ci < cells.size(); ++ci) {
+      LocalCell& lc = cells[ci];
       auto& act = use_g ? lc.ag : lc.af;
       if (!use_g && absent_in(lc, C, k)) {
         act[k] = kAbsent;
-        next.push_back(std::move(lc));
         continue;
       }
       int j = fn.argmax(lc.cell.v[0].x, lc.cell.v[0].y);
@@ -352,6 +354,17 @@ class Builder {
       if (affine) {
         act[k] = static_cast<signed char>(j);
         if (!use_g) update_ref(lc, C, k);
+        continue;
+      }
+      split[ci] = 1;
+      any = true;
+    }
+    if (!any) return;
+    std::vector<LocalCell> next;
+    next.reserve(cells.size() + 4);
+    for (std::size_t ci = 0; ci < cells.size(); ++ci) {
+      LocalCell& lc = cells[ci];
+      if (!split[ci]) {
         next.push_back(std::move(lc));
         continue;
       }
