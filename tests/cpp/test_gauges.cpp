@@ -14,10 +14,9 @@ using linf::testing::box;
 
 namespace {
 
-// A gauge as the outputs report it: with its measurement line, rank and normalised score.
+// A gauge as the outputs report it: with its measurement line and normalised score.
 struct Reported : Gauge {
   Vec2 p, q;
-  int rank = 0;
   double norm_score = 0;
 };
 
@@ -29,7 +28,6 @@ std::vector<Reported> gauges(const std::vector<Polygon>& polys) {
     Reported y{x};
     const MeasurementLine m = measurement_line(r.diagram.sites, x);
     y.p = m.p, y.q = m.q;
-    y.rank = int(out.size()) + 1;
     y.norm_score = g.norm_score(x);
     out.push_back(y);
   }
