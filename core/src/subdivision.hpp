@@ -374,7 +374,7 @@ class Builder {
         for (int i = 0; i < fn.n; ++i)
           if (i != jj && !detail::clip_in_place(c, minus(fn.piece[jj], fn.piece[i]))) break;
         if (c.empty()) continue;
-        LocalCell sub{std::move(c), lc.af, lc.ag, lc.ref};
+        LocalCell sub{std::move(c), lc.af, lc.ag, lc.ref, {}, {}};
         (use_g ? sub.ag : sub.af)[k] = static_cast<signed char>(jj);
         if (!use_g) update_ref(sub, C, k);
         next.push_back(std::move(sub));
