@@ -200,6 +200,8 @@ StreamResult stream_voronoi(std::vector<Polygon>&& polygons, const DiagramOption
     join_pair(group);
     starts.push_back(batch.size());
     for (Piece p : group) {
+      // Again after the join: a piece's kind is decided at its own midpoint, as the in-memory
+      // stage decides it on the joined pieces (the tiles' kinds served the point stretches).
       p.kind = classify(d.sites, p);
       batch.push_back(p);
     }
