@@ -37,7 +37,9 @@ std::vector<Piece> run(const std::vector<Site>& sites, std::vector<int> ids, con
   std::vector<Builder> workers(worker_count(tasks.size(), opt.threads), Builder(model, root, hole));
   parallel_for(tasks.size(), opt.threads,
                [&](unsigned w, std::size_t i) { workers[w].process(tasks[i].first, tasks[i].second); });
-  return collect(model, workers, st);
+  std::vector<Piece> part;
+  collect(model, workers, st, part);
+  return part;
 }
 
 // Rounding allowance of the pruning decisions, from the coordinate scale: one value for the

@@ -157,7 +157,6 @@ StreamResult stream_voronoi(std::vector<Polygon>&& polygons, const DiagramOption
       t_stretches += since(t);
     }
     runs.add(part);
-    std::vector<Piece>().swap(part);
   });
   d.seconds_build = since(t0) - t_stretches;
   d.tiles = st.tiles, d.tile_tasks = st.tasks, d.largest_tile_sites = st.largest_tile_sites;

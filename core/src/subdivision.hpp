@@ -819,12 +819,13 @@ inline void join_pieces(std::vector<Piece>& in) {
 }
 
 
-// The workers' pieces, with global site ids, joined (about a third of the raw pieces remain), in
-// one vector; their counts added to `st`.
-std::vector<Piece> collect(const Model& m, const std::vector<Builder>& workers, BuildStats& st) {
+// The workers' pieces, with global site ids, joined (about a third of the raw pieces remain),
+// into `raw` (its capacity kept: tile after tile it is the same buffer, not fresh pages); their
+// counts added to `st`.
+void collect(const Model& m, const std::vector<Builder>& workers, BuildStats& st, std::vector<Piece>& raw) {
   std::size_t n = 0;
   for (const Builder& w : workers) n += w.out.size();
-  std::vector<Piece> raw;
+  raw.clear();
   raw.reserve(n);
   for (const Builder& w : workers) {
     for (Piece p : w.out) {
@@ -836,7 +837,6 @@ std::vector<Piece> collect(const Model& m, const std::vector<Builder>& workers, 
   }
   st.raw_pieces += raw.size();
   join_pieces(raw);
-  return raw;
 }
 
 

@@ -55,7 +55,7 @@ void join_pair(std::vector<Piece>& pieces);
 // A part of the diagram: one tile's pieces (global site ids, joined within the part, sorted
 // by owner pair as join_pieces leaves them) and the box they lie in. Pieces continuing each
 // other across parts are not joined; a vertex on a part's box may have pieces in several parts.
-// The sink may take the part's contents.
+// The sink may take the part's contents; left in place, its buffer serves the next part.
 using PartSink = std::function<void(std::vector<Piece>& part, const Box& frame)>;
 
 // The same pieces as build_pieces, handed over part by part as the tiles are built instead of
