@@ -1,0 +1,179 @@
+// The geometry the builder decides with, apart from the algorithm (as a traits class): one
+// tile's sites and their distance functions, the ownership rule (least L-inf distance, then
+// least L1, then rank) and the tests built on it, with their rounding allowances. Internal to
+// the builder (subdivision.hpp).
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "affine.hpp"
+#include "bounds.hpp"
+#include "cell.hpp"
+#include "linf/builder.hpp"
+
+// Internal linkage, as subdivision.hpp (see there).
+namespace linf::detail {
+namespace {
+
+// The sites of one tile and their distance functions, shared read-only by the workers.
+// Local ids run in the order of the global ids (`global`), so every decision that compares
+// site indices (the tie rule) is the same in any tile.
+struct Model {
+  std::vector<Site> S;
+  std::vector<int> global;
+  BuildOptions opt;
+  std::vector<DistFn> f, g;  // L-inf, and the L1 tie-break
+  double tau = 0;            // rounding allowance in pruning decisions, the same in every tile
+  Model(const std::vector<Site>& all, std::vector<int> ids, const BuildOptions& o, double tau_)
+      : global(std::move(ids)), opt(o), tau(tau_) {
+    S.reserve(global.size());
+    f.reserve(global.size());
+    g.reserve(global.size());
+    for (int i : global) {
+      const Site& t = all[i];
+      S.push_back(t);
+      f.push_back(make_distfn(t, Norm::Linf));
+      g.push_back(make_distfn(t, Norm::L1));
+    }
+  }
+
+  // The allowance of a decision at p: tau, the same in every tile, and rounding at p's scale.
+  double tol(const Vec2& p) const { return tau + 1e-13 * (std::fabs(p.x) + std::fabs(p.y)); }
+
+  // The derivative of f at m along d: the steepest of the pieces within `tol` of f's value.
+  static double slope(const DistFn& f, const Vec2& m, const Vec2& d, double value, double tol) {
+    double s = -INFINITY;
+    for (int i = 0; i < f.n; ++i)
+      if (f.piece[i].at(m.x, m.y) >= value - tol) s = std::max(s, f.piece[i].a * d.x + f.piece[i].b * d.y);
+    return s;
+  }
+
+  // The owner just beyond m in direction d: compare distance, its slope along d, then the
+  // L1 tie-break with its slope, then rank.
+  // Only sites tied with the edge's own site along the whole edge can own beyond it: every
+  // other site is above it at an end, so it is not least at the edge's points.
+  template <class Sites>
+  int owner_beyond(const Vec2& m, const Vec2& d, const Sites& C) const {
+    const double len = std::hypot(d.x, d.y);
+    const Vec2 u{d.x / len, d.y / len};
+    const double tl = tol(m);
+    double fmin = INFINITY;
+    for (int t : C) fmin = std::min(fmin, f[t].at(m.x, m.y));
+    // The L1 value and slope only where the L-inf slopes tie (computed at most once a site).
+    struct Candidate {
+      int t = -1;
+      double s = 0, gv = 0, gs = 0;
+      bool has_g = false;
+    };
+    auto with_g = [&](Candidate& c) {
+      if (!c.has_g) c.gv = g[c.t].at(m.x, m.y), c.gs = slope(g[c.t], m, u, c.gv, tl), c.has_g = true;
+    };
+    Candidate best;
+    for (int t : C) {
+      const double fv = f[t].at(m.x, m.y);
+      if (fv > fmin + tl) continue;
+      Candidate c;
+      c.t = t;
+      c.s = slope(f[t], m, u, fv, tl);
+      bool better;
+      if (best.t < 0) better = true;
+      else if (std::fabs(c.s - best.s) > 1e-12) better = c.s < best.s;
+      else {
+        with_g(c), with_g(best);
+        if (std::fabs(c.gv - best.gv) > tl) better = c.gv < best.gv;
+        else if (std::fabs(c.gs - best.gs) > 1e-12) better = c.gs < best.gs;
+        else better = rank_before(t, best.t);
+      }
+      if (better) best = c;
+    }
+    return best.t;
+  }
+
+  bool rank_before(int a, int b) const {
+    const bool pa = S[a].is_point(), pb = S[b].is_point();
+    if (pa != pb) return pa;
+    return a < b;
+  }
+
+  // The reference u's values at the corners of the grown box, computed once per box.
+  struct Reference {
+    int u = -1;
+    Vec2 c[4];
+    double fu[4], gu[4], e[4];
+  };
+  Reference reference(const Box& b, int u) const {
+    Reference r;
+    r.u = u;
+    if (u < 0) return r;
+    const double m = 1e-3 * std::max(b.x2 - b.x1, b.y2 - b.y1) + tau;
+    r.c[0] = {b.x1 - m, b.y1 - m}, r.c[1] = {b.x2 + m, b.y1 - m}, r.c[2] = {b.x2 + m, b.y2 + m}, r.c[3] = {b.x1 - m, b.y2 + m};
+    for (int k = 0; k < 4; ++k)
+      r.fu[k] = f[u].at(r.c[k].x, r.c[k].y), r.gu[k] = g[u].at(r.c[k].x, r.c[k].y), r.e[k] = tol(r.c[k]);
+    return r;
+  }
+  // Does u come before t at every point of the box and just beyond its sides, by the
+  // ownership rule (least L-inf, then least L1)? Then t owns nothing there, ties nowhere, and
+  // is never the owner across a side, so it is no candidate. The lower-bound test cannot see
+  // this where sites are nearly parallel (the left ends of many tracks seen from far left, a
+  // row of equal shapes seen from afar: their distances differ by a constant smaller than the
+  // box), so without it the boxes would be cut down to that constant.
+  // Sufficient test on the box grown by a small margin: some piece p of f_t above f_u (p <= f_t,
+  // and p - f_u is concave, so its least value is at a corner); or some piece not below f_u
+  // and some piece of g_t above g_u. Allowances: tol() at each corner.
+  bool dominated(const Reference& r, int t) const {
+    if (r.u < 0 || t == r.u) return false;
+    switch (against(f[t], r.c, 4, r.fu, r.e)) {
+      case Side::Above: return true;
+      case Side::Below: return false;
+      case Side::Neither: break;
+    }
+    return against(g[t], r.c, 4, r.gu, r.e) == Side::Above;
+  }
+
+  // Where the pieces of fn stand against `ref` at the points, beyond an allowance at each:
+  // Above if some piece is above it at every point, Below if every piece is below it at some
+  // point. Comparisons only: this runs for every candidate of every box.
+  enum class Side { Above, Below, Neither };
+  static Side against(const DistFn& fn, const Vec2* pts, std::size_t n, const double* ref,
+                      const double* allowance) {
+    bool below = true;
+    for (int i = 0; i < fn.n; ++i) {
+      bool above = true, under = false;
+      for (std::size_t k = 0; k < n; ++k) {
+        const double d = fn.piece[i].at(pts[k].x, pts[k].y) - ref[k];
+        above = above && d > allowance[k];
+        under = under || d < -allowance[k];
+        if (!above && under) break;
+      }
+      if (above) return Side::Above;
+      below = below && under;
+    }
+    return below ? Side::Below : Side::Neither;
+  }
+
+  // The piece of f that is the maximum at every corner of the box, or -1.
+  static int affine_piece(const DistFn& f, const Box& b) {
+    const int j = f.argmax(b.x1, b.y1);
+    if (f.argmax(b.x2, b.y1) != j || f.argmax(b.x2, b.y2) != j || f.argmax(b.x1, b.y2) != j) return -1;
+    return j;
+  }
+
+  // Is piece j of fn below another piece at every vertex of the cell, beyond rounding? Both are
+  // affine, so it is below it on the whole cell: j is nowhere the maximum, and clipping the
+  // cell down to where it is would only find that out, one copy of the cell at a time.
+  static bool never_highest(const DistFn& fn, int j, const Cell& c) {
+    for (int i = 0; i < fn.n; ++i) {
+      if (i == j) continue;
+      const Affine h = minus(fn.piece[j], fn.piece[i]);
+      bool below = true;
+      for (const Vec2& p : c.v)
+        if (!(h.at(p.x, p.y) < -16 * h.err(p.x, p.y))) { below = false; break; }
+      if (below) return true;
+    }
+    return false;
+  }
+};
+
+}  // namespace
+}  // namespace linf::detail
