@@ -288,13 +288,20 @@ class Builder {
 
     for (LocalCell& lc : cells) {
       // Sites whose L-inf pieces coincide here need the L1 tie-break, hence affine L1 pieces.
+      // Pairs among the sites present here only: in a large solve most sites are absent from
+      // most cells.
+      boost::container::small_vector<std::size_t, 16> present;
+      for (std::size_t i = 0; i < k; ++i)
+        if (lc.af[i] >= 0) present.push_back(i);
       boost::container::small_vector<char, 16> tied(k, 0);
       bool any = false;
-      for (std::size_t i = 0; i < k; ++i) {
-        if (lc.af[i] < 0) continue;
+      for (std::size_t x = 0; x < present.size(); ++x) {
+        const std::size_t i = present[x];
         const Affine& fi = f_[C[i]].piece[lc.af[i]];
-        for (std::size_t j = i + 1; j < k; ++j)
-          if (lc.af[j] >= 0 && detail::same_affine(fi, f_[C[j]].piece[lc.af[j]])) tied[i] = tied[j] = 1, any = true;
+        for (std::size_t y = x + 1; y < present.size(); ++y) {
+          const std::size_t j = present[y];
+          if (detail::same_affine(fi, f_[C[j]].piece[lc.af[j]])) tied[i] = tied[j] = 1, any = true;
+        }
       }
       if (!any) {
         regions(lc, C);
