@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <tuple>
 
 #include "linf/builder.hpp"
@@ -53,6 +54,42 @@ TEST(Tiles, SamePiecesForEveryTileSize) {
       ASSERT_EQ(got.size(), ref.size()) << "seed " << seed << " tile " << tiled.tile_size;
       for (std::size_t i = 0; i < got.size(); ++i) ASSERT_EQ(got[i], ref[i]) << "seed " << seed << " piece " << i;
     }
+  }
+}
+
+// Disks drawn with many vertices take the builder's other path (a crowded box solved whole,
+// subdivision.hpp curved()); its decisions, too, must not depend on the tile.
+TEST(Tiles, CurvedShapesTheSameForEveryTileSize) {
+  std::vector<Polygon> p;
+  for (int i = 0; i < 9; ++i) {
+    Ring r;
+    const int n = 300 + 37 * i;
+    for (int k = 0; k < n; ++k) {
+      const double a = 2 * 3.14159265358979323846 * k / n + 0.1 * i;
+      r.push_back({Coord(50000 * (i % 3) + std::llround(20000 * std::cos(a))),
+                   Coord(50000 * (i / 3) + std::llround((12000 + 1000 * i) * std::sin(a)))});
+    }
+    p.push_back({r, {}});
+  }
+  const Sites s = sites_of_polygons(merge_polygons(p));
+  const Box clip = clip_box(s);
+  BuildOptions whole, plain;
+  whole.threads = 2;
+  plain.threads = 2;
+  plain.crowded_sites = 0;  // never solve a crowded box whole
+  BuildStats st_whole, st_plain;
+  const std::vector<Key> ref = keys(build_pieces(s, clip, whole, &st_whole));
+  build_pieces(s, clip, plain, &st_plain);
+  ASSERT_LT(st_whole.solves, st_plain.solves) << "the crowded path should be taken";
+  const double side = std::max(clip.x2 - clip.x1, clip.y2 - clip.y1) / 3;
+  for (double frac : {0.5, 0.1}) {
+    BuildOptions tiled = whole;
+    tiled.tile_size = frac * side;
+    BuildStats st;
+    const std::vector<Key> got = keys(build_pieces(s, clip, tiled, &st));
+    EXPECT_GT(st.tiles, 1u) << "tile " << tiled.tile_size;
+    ASSERT_EQ(got.size(), ref.size()) << "tile " << tiled.tile_size;
+    for (std::size_t i = 0; i < got.size(); ++i) ASSERT_EQ(got[i], ref[i]) << "tile " << tiled.tile_size << " piece " << i;
   }
 }
 
