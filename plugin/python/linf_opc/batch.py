@@ -32,6 +32,7 @@ from . import gauges as gauge_stage
 from . import layout as layer_io
 from . import markers as marker_io
 from . import output
+from . import picture as layout_picture
 from . import report as html_report
 from . import report_db
 from . import selection as selection_stage
@@ -369,8 +370,12 @@ def write_selection(inp, sel):
     stats.update(input=inp.path, cell=inp.cell.name, layer=inp.name, gauges=len(sel.gauges), max_norm=sel.max_norm,
                  marker_source=sel.markers.summary(), pitch_source="given" if sel.pitch_given else "estimated")
     stats["seconds"].update(read=inp.t_read, gauges=sel.result.seconds["total"], halves=sel.t_halves)
+    chosen = sel.study.runs[(stats["chosen"]["mode"], stats["chosen"]["size"])]
+    png = None
+    if not html_report.svg_picture_fits(inp.polygons, chosen, sel.study.markers):
+        png = layout_picture.picture(inp.region, inp.dbu, sel.study.markers, chosen.windows)
     html_report.write(inp.file("report.html"), "Pattern selection: %s %s" % (os.path.basename(inp.path), inp.name),
-                      stats, sel.study, inp.polygons, inp.dbu)
+                      stats, sel.study, inp.polygons, inp.dbu, png)
     stats["seconds"]["write"] = time.perf_counter() - t0
     output.write_json(stats, inp.file("stats.json"))
     return stats

@@ -1,7 +1,22 @@
 """A self-contained HTML report of a selection study: the thesis's tables, SVG plots of
 coverage, useful gauges and runtime against window size (Figures 5.17-5.19), and a picture of
 the layout with the chosen windows. No network resources."""
+import base64
 import html
+
+# The layout picture is drawn as SVG up to this many polygon points, markers and windows; a
+# larger layer comes as a PNG rendered by the caller (an SVG of five million wires is a quarter
+# of a gigabyte that no browser opens).
+SVG_PICTURE_MAX = 200000
+
+
+def svg_picture_fits(polygons, run, markers):
+    n = len(markers) + len(run.windows)
+    for outer, holes in polygons:
+        n += len(outer) + sum(len(h) for h in holes)
+        if n > SVG_PICTURE_MAX:
+            return False
+    return True
 
 COLOURS = {"A": "#1f77b4", "B": "#d62728", "C": "#2ca02c"}
 
@@ -76,7 +91,13 @@ def _picture(polygons, run, markers, size=700):
     return "\n".join(out)
 
 
-def write(path, title, stats, study, polygons, dbu):
+def _png_picture(png):
+    return '<img class="layout" alt="the layout with the windows" src="data:image/png;base64,%s"/>' % (
+        base64.b64encode(png).decode("ascii"))
+
+
+def write(path, title, stats, study, polygons, dbu, png=None):
+    """png: the layout picture as PNG bytes, for a layer too large for SVG (svg_picture_fits)."""
     sizes = sorted(study.heuristic)
     modes = sorted(set(m for m, k in study.runs))
     cov = {m: [study.runs[(m, k)].covered if (m, k) in study.runs else None for k in sizes] for m in modes}
@@ -124,7 +145,7 @@ def write(path, title, stats, study, polygons, dbu):
         parts.append(_table(["type", "S_n", "N_g^1", "N_g^2"], [[c[0], c[1], c[2], c[3]] for c in s["classes"]]))
         parts.append("<p>N_t^1 = %d, N_t^2 = %d, S_12 = %.2f%%</p>" % (s["N_t1"], s["N_t2"], s["S_12"]))
     parts.append("<h2>Layout with the windows (%s)</h2>" % key)
-    parts.append(_picture(polygons, chosen, study.markers))
+    parts.append(_png_picture(png) if png is not None else _picture(polygons, chosen, study.markers))
     parts.append("</body></html>")
     with open(path, "w") as f:
         f.write("\n".join(parts))
