@@ -14,6 +14,7 @@
 #include "linf/diagram.hpp"
 #include "linf/engine.hpp"
 #include "linf/gds.hpp"
+#include "linf/oasis.hpp"
 #include "linf/pages.hpp"
 #include "linf/farthest.hpp"
 #include "linf/gauge.hpp"
@@ -416,6 +417,24 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them (else they stream past, see\n"
       "voronoi_polygons). csv, gds, gds_layer, dbu:\n"
       "as in voronoi_polygons, and gds_cell. gauges_csv: also write the gauges there (gauges.csv, micrometres).");
+
+  m.def(
+      "oasis_from_drawing",
+      [](const std::string& drawing, const py::object& polys, int layer, int datatype,
+         const std::vector<std::tuple<int, int, std::string>>& names, double dbu, const std::string& cell,
+         const std::string& path) {
+        const std::vector<Polygon> in = polygons_of(polys);
+        std::vector<LayerName> ln;
+        for (const auto& [l, d, n] : names) ln.push_back({l, d, n});
+        py::gil_scoped_release unlocked;
+        return oasis_from_drawing(drawing, in, layer, datatype, ln, dbu, cell, path);
+      },
+      py::arg("drawing"), py::arg("polygons"), py::arg("layer"), py::arg("datatype"), py::arg("names"),
+      py::arg("dbu"), py::arg("cell"), py::arg("path"),
+      "Writes a result layout as OASIS without KLayout holding it: the polygons (the input layer) on\n"
+      "layer/datatype, then every path and text of a GDSII drawing the core wrote (write_gauges_gds, the\n"
+      "diagram's draw_layer), in one cell; names: (layer, datatype, name) for the result layers. Returns the\n"
+      "number of shapes written.");
 
   m.def(
       "write_gauges_gds",

@@ -181,9 +181,16 @@ def parse_window(text, dbu):
 def write_voronoi(inp, diagram):
     t0 = time.perf_counter()
     output.write_csv(diagram, inp.file("voronoi.csv"), inp.dbu)
-    res, top = inp.result_layout()
-    drawn = output.add_layers(res, top, diagram, inp.layer, inp.datatype, direct=True)
-    output.save(res, inp.file("voronoi.oas"))
+    if output.needs_core_writer(diagram.n_pieces + len(inp.polygons)):
+        names = [(inp.layer, output.DATATYPE_BASE + i, output.diagram_layer_info(inp.layer, inp.datatype, k).name)
+                 for i, k in enumerate(diagram_stage.KINDS)]
+        output.write_by_core(inp.file("voronoi.oas"), diagram.gds_path, inp.polygons, inp.layer, inp.datatype,
+                             names, inp.dbu, inp.cell.name)
+        drawn = {k: diagram.drawn[k] for k in diagram_stage.KINDS}
+    else:
+        res, top = inp.result_layout()
+        drawn = output.add_layers(res, top, diagram, inp.layer, inp.datatype, direct=True)
+        output.save(res, inp.file("voronoi.oas"))
     s = output.summary(diagram, inp.dbu, input=inp.path, cell=inp.cell.name, layer=inp.name,
                        polygons=len(inp.polygons), drawn=drawn)
     s["seconds"].update(read=inp.t_read, write=time.perf_counter() - t0)
@@ -218,9 +225,13 @@ def write_gauges(inp, result, gauges, args, window=None):
         gauge_output.write_csv(gauges, inp.file("gauges.csv"), inp.dbu)
     cap = report_max(args)
     in_report = gauge_output.write_report(gauges, inp.dbu, inp.cell.name, inp.path, inp.file("gauges.lyrdb"), cap)
-    res, top = inp.result_layout()
-    gauge_output.add_layer(res, top, gauges, inp.layer, inp.datatype, direct=True)
-    output.save(res, inp.file("gauges.oas"))
+    if output.needs_core_writer(2 * len(gauges) + len(inp.polygons)):
+        gauge_output.write_oasis(inp.file("gauges.oas"), gauges, inp.polygons, inp.layer, inp.datatype, inp.dbu,
+                                 inp.cell.name)
+    else:
+        res, top = inp.result_layout()
+        gauge_output.add_layer(res, top, gauges, inp.layer, inp.datatype, direct=True)
+        output.save(res, inp.file("gauges.oas"))
     s = gauge_output.summary(result, inp.dbu)
     s.update(input=inp.path, cell=inp.cell.name, layer=inp.name, polygons=len(inp.polygons),
              dbu=round(inp.dbu, 12), written=len(gauges), report_items=in_report, report_max_per_type=cap)

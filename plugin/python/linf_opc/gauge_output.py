@@ -8,7 +8,7 @@ import pya
 
 from . import core, drawing, report_db
 from .gauges import TYPES, GaugeTable
-from .output import copy_drawing
+from .output import copy_drawing, write_by_core
 
 CSV_HEADER = ["id", "type", "x1", "y1", "x2", "y2", "cx", "cy", "cd", "score", "norm_score", "tiebreak", "rank"]
 
@@ -62,6 +62,19 @@ def add_layer(layout, cell, gauges, layer, datatype, direct=False):
     finally:
         drawing.remove(path)
     return index
+
+
+def write_oasis(path, gauges, polygons, layer, datatype, dbu, cell_name):
+    """gauges.oas for a layer of millions of gauges, written by the core (output.write_by_core):
+    the input layer and the gauge layer as add_layer draws it."""
+    table = gauges if isinstance(gauges, GaugeTable) else GaugeTable.of(gauges)
+    gds = drawing.temporary()
+    try:
+        core.write_gauges_gds(gds, dbu, layer, DATATYPE, *table.columns(), cell=cell_name)
+        write_by_core(path, gds, polygons, layer, datatype,
+                      [(layer, DATATYPE, gauge_layer_info(layer, datatype).name)], dbu, cell_name)
+    finally:
+        drawing.remove(gds)
 
 
 # A marker browser is for reading: as a DRC deck's maximum results per check, the report

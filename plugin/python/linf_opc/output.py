@@ -38,6 +38,21 @@ def save(layout, path):
     layout.write(path, opts)
 
 
+def needs_core_writer(shapes):
+    """Whether a result layout of this many shapes is written by the core (write_by_core)
+    instead of being built in a KLayout Layout and saved."""
+    return shapes > COMPACT_MAX_SHAPES
+
+
+def write_by_core(path, drawing, polygons, layer, datatype, names, dbu, cell):
+    """A result layout as OASIS straight from the core's GDSII drawing (paths and texts) and the
+    input polygons, for layouts of millions of shapes, which KLayout would hold in memory
+    while it saved them. names: [(layer, datatype, pya.LayerInfo name)]. Returns the shape count."""
+    from . import core
+    from .polygons import core_input
+    return core.oasis_from_drawing(drawing, core_input(polygons), layer, datatype, names, dbu, cell, path)
+
+
 def write_csv(diagram, path, dbu):
     """The pieces as CSV (the core's write_pieces_csv writes the same bytes, faster: batch runs
     ask the core to write it while it holds the diagram)."""

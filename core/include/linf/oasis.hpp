@@ -1,0 +1,50 @@
+// A result layout written as OASIS by the core, for layers whose results are tens of millions
+// of shapes: KLayout would hold them all in a Layout while it saves (gigabytes on a full layer).
+//
+//   in:  the core's own GDSII drawing (gds.hpp: two-point paths of width zero and texts), the
+//        input layer's polygons, the names of the result layers;
+//   out: one OASIS cell holding the input polygons (holes joined to their outline by cut
+//        lines, as OASIS has no holes) and every path and text of the drawing, streamed.
+// A plain subset of OASIS 1.0: no compression, no tables, absolute coordinates; KLayout reads
+// it as the same shapes.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "linf/site.hpp"
+
+namespace linf {
+
+class OasisWriter {
+ public:
+  // Throws std::runtime_error if the file cannot be written. dbu: micrometres per DBU.
+  OasisWriter(const std::string& path, double dbu, const std::string& cell);
+  ~OasisWriter();
+  // A name for a layer/datatype pair (for geometry and for texts); all before any shape.
+  void layer_name(const std::string& name, int layer, int datatype);
+  // An outline without holes, at least three points.
+  void polygon(int layer, int datatype, const Ring& outline);
+  // A two-point path of width zero with flush ends.
+  void path(int layer, int datatype, std::int64_t x1, std::int64_t y1, std::int64_t x2, std::int64_t y2);
+  void text(int layer, int datatype, std::int64_t x, std::int64_t y, const std::string& s);
+  void close();  // ends the file; throws on a write error
+
+ private:
+  struct Stream;
+  std::unique_ptr<Stream> s_;
+};
+
+struct LayerName {
+  int layer = 0, datatype = 0;
+  std::string name;
+};
+
+// The input polygons on (layer, datatype), then the drawing's paths and texts, into `path`.
+// Returns the number of shapes written. Throws std::runtime_error on an unreadable drawing.
+std::size_t oasis_from_drawing(const std::string& drawing, const std::vector<Polygon>& input, int layer,
+                               int datatype, const std::vector<LayerName>& names, double dbu,
+                               const std::string& cell, const std::string& path);
+
+}  // namespace linf
