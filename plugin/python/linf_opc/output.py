@@ -4,7 +4,9 @@ import json
 
 import pya
 
+from . import core
 from .diagram import KINDS
+from .polygons import core_input
 
 CSV_HEADER = ["kind", "x1", "y1", "x2", "y2", "d1", "d2",
               "a_x1", "a_y1", "a_x2", "a_y2", "b_x1", "b_y1", "b_x2", "b_y2"]
@@ -48,8 +50,6 @@ def write_by_core(path, drawing, polygons, layer, datatype, names, dbu, cell):
     """A result layout as OASIS straight from the core's GDSII drawing (paths and texts) and the
     input polygons, for layouts of millions of shapes, which KLayout would hold in memory
     while it saved them. names: [(layer, datatype, pya.LayerInfo name)]. Returns the shape count."""
-    from . import core
-    from .polygons import core_input
     return core.oasis_from_drawing(drawing, core_input(polygons), layer, datatype, names, dbu, cell, path)
 
 
