@@ -1,7 +1,7 @@
 #!/bin/sh
 # Installs the Debian packages the project needs, only those missing (needs root or sudo).
 set -e
-PKGS="klayout libcgal-dev libgmp-dev libmpfr-dev libboost-dev pybind11-dev python3-dev cmake g++ make
+PKGS="klayout libcgal-dev libgmp-dev libmpfr-dev libboost-dev zlib1g-dev pybind11-dev python3-dev cmake g++ make
       libgtest-dev xvfb xauth python3 clang libclang-rt-14-dev"
 missing=""
 for p in $PKGS; do
