@@ -5,8 +5,8 @@
 //        input layer's polygons, the names of the result layers;
 //   out: one OASIS cell holding the input polygons (holes joined to their outline by cut
 //        lines, as OASIS has no holes) and every path and text of the drawing, streamed.
-// A plain subset of OASIS 1.0: no compression, no tables, absolute coordinates; KLayout reads
-// it as the same shapes.
+// A plain subset of OASIS 1.0: no name tables, positions relative to the previous shape's,
+// records deflated in CBLOCKs; KLayout reads it as the same shapes (tests/klayout/check_core_oasis.py).
 #pragma once
 #include <cstdint>
 #include <memory>
