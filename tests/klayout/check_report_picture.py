@@ -64,12 +64,8 @@ def pixels(png):
 
 
 report.SVG_PICTURE_MAX = 0
-args = {k: None for k in ("cmd", "input", "layer", "cell", "out", "window", "markers", "sizes", "modes", "mode",
-                          "size", "pitch", "halves", "max_norm", "split", "fraction", "seed", "threshold", "bin",
-                          "box", "tile", "rdb_max")}
-args.update(cmd="select", input=os.path.join(repo, "samples", "metal.oas"), layer="1/0", markers="100/0",
-            halves="0", out=work)
-rc = batch.main(args)
+rc = batch.main(dict(cmd="select", input=os.path.join(repo, "samples", "metal.oas"), layer="1/0", markers="100/0",
+                     halves="0", out=work))
 expect(rc == 0, "select exit code %s" % rc)
 page = open(os.path.join(work, "report.html")).read()
 uris = re.findall(r'src="([^"]*)"', page)

@@ -1,4 +1,5 @@
 """Writing gauges: gauges.csv (micrometres), a gauge layer, a report database for the marker browser."""
+import contextlib
 import csv
 from array import array
 from collections.abc import Sequence
@@ -54,27 +55,29 @@ def add_layer(layout, cell, gauges, layer, datatype, direct=False):
     if index is None:
         index = layout.insert_layer(info)
     cell.shapes(index).clear()
-    table = gauges if isinstance(gauges, GaugeTable) else GaugeTable.of(gauges)
-    path = drawing.temporary()
-    try:
-        core.write_gauges_gds(path, layout.dbu, layer, DATATYPE, *table.columns(), cell=cell.name)
+    with _drawing(gauges, layout.dbu, layer, cell.name) as path:
         copy_drawing(cell, path, {(layer, DATATYPE): index}, direct)
-    finally:
-        drawing.remove(path)
     return index
 
 
 def write_oasis(path, gauges, polygons, layer, datatype, dbu, cell_name):
     """gauges.oas for a layer of millions of gauges, written by the core (output.write_by_core):
     the input layer and the gauge layer as add_layer draws it."""
-    table = gauges if isinstance(gauges, GaugeTable) else GaugeTable.of(gauges)
-    gds = drawing.temporary()
-    try:
-        core.write_gauges_gds(gds, dbu, layer, DATATYPE, *table.columns(), cell=cell_name)
+    with _drawing(gauges, dbu, layer, cell_name) as gds:
         write_by_core(path, gds, polygons, layer, datatype,
                       [(layer, DATATYPE, gauge_layer_info(layer, datatype).name)], dbu, cell_name)
+
+
+@contextlib.contextmanager
+def _drawing(gauges, dbu, layer, cell_name):
+    """The gauge layer (lines and labels) as a temporary GDSII file the core writes, removed after."""
+    table = gauges if isinstance(gauges, GaugeTable) else GaugeTable.of(gauges)
+    path = drawing.temporary()
+    try:
+        core.write_gauges_gds(path, dbu, layer, DATATYPE, *table.columns(), cell=cell_name)
+        yield path
     finally:
-        drawing.remove(gds)
+        drawing.remove(path)
 
 
 # A marker browser is for reading: as a DRC deck's maximum results per check, the report
