@@ -1,10 +1,15 @@
 // Thin binding: plain Python data in, plain Python data out. No logic lives here.
 #include <pybind11/pybind11.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <array>
 #include <climits>
 #include <cstdio>
+#include <cerrno>
 #include <cstring>
+#include <stdexcept>
 #include <chrono>
 #include <string>
 #include <tuple>
@@ -136,19 +141,103 @@ py::bytes blank_bytes(std::size_t n, char*& data) {
   return py::reinterpret_steal<py::bytes>(o);
 }
 
+// Where the gauge columns go: into two Python bytes objects, or into one file (the reals block,
+// then the ints block) that Python maps instead of holding: on a full layer the columns are the
+// largest thing the flow keeps (132 bytes a gauge), and a mapped file's pages are the kernel's to
+// drop and read again. Written through buffers with pwrite, not a writable mapping, so that a
+// full disk is an exception and not a SIGBUS.
+class ColumnSink {
+ public:
+  ColumnSink(std::size_t n, const std::string& file) : n_(n), file_(file) {
+    if (file_.empty()) {
+      reals_ = blank_bytes(kReal * n, rd_);
+      ints_ = blank_bytes(kInt * n, id_);
+      return;
+    }
+    fd_ = ::open(file_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    if (fd_ < 0) throw std::runtime_error("cannot write the gauge columns to " + file_ + ": " + std::strerror(errno));
+    buf_r_.resize(kReal * kBatch);
+    buf_i_.resize(kInt * kBatch);
+    rd_ = buf_r_.data(), id_ = buf_i_.data();
+  }
+  ~ColumnSink() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  ColumnSink(const ColumnSink&) = delete;
+  ColumnSink& operator=(const ColumnSink&) = delete;
+
+  static constexpr std::size_t kReal = 10 * sizeof(double), kInt = 13 * sizeof(std::int32_t);
+
+  // Where the next gauge's values go; next() after each gauge.
+  char*& reals() { return rd_; }
+  char*& ints() { return id_; }
+  void next() {
+    if (fd_ >= 0 && ++in_batch_ == kBatch) flush();
+  }
+
+  py::dict finish() {
+    py::dict out;
+    out["count"] = n_;
+    if (fd_ < 0) {
+      out["reals"] = reals_;
+      out["ints"] = ints_;
+      out["file"] = py::none();
+      return out;
+    }
+    flush();
+    if (::close(fd_) != 0) {
+      fd_ = -1;
+      throw std::runtime_error("cannot write the gauge columns to " + file_ + ": " + std::strerror(errno));
+    }
+    fd_ = -1;
+    out["reals"] = py::none();
+    out["ints"] = py::none();
+    out["file"] = file_;
+    return out;
+  }
+
+ private:
+  static constexpr std::size_t kBatch = std::size_t(1) << 14;
+
+  void put(const char* p, std::size_t left, std::uint64_t at) {
+    while (left > 0) {
+      const ssize_t k = pwrite(fd_, p, left, off_t(at));
+      if (k < 0 && errno == EINTR) continue;
+      if (k <= 0)
+        throw std::runtime_error("cannot write the gauge columns to " + file_ + " (disk full?): " + std::strerror(errno));
+      p += k, left -= std::size_t(k), at += std::uint64_t(k);
+    }
+  }
+  void flush() {
+    put(buf_r_.data(), kReal * in_batch_, kReal * done_);
+    put(buf_i_.data(), kInt * in_batch_, kReal * n_ + kInt * done_);
+    done_ += in_batch_, in_batch_ = 0;
+    rd_ = buf_r_.data(), id_ = buf_i_.data();
+  }
+
+  std::size_t n_;
+  std::string file_;
+  int fd_ = -1;
+  py::bytes reals_, ints_;
+  std::vector<char> buf_r_, buf_i_;
+  char *rd_ = nullptr, *id_ = nullptr;
+  std::size_t in_batch_ = 0, done_ = 0;
+};
+
 // Gauges as columns in rank order, row-major blocks of plain numbers (a Python tuple a gauge
 // would be most of the flow's memory on a large layer; plugin/python/linf_opc/gauges.py wraps
 // them): "reals" float64 x10 (x1, y1, x2, y2, cx, cy, cd, score, norm_score, tiebreak), "ints"
 // int32 x13 (rank, teeth, site_a, site_b, a_x1, a_y1, a_x2, a_y2, b_x1, b_y1, b_x2, b_y2, type
-// index in internal, external, sandwich, comb, T). The stretches are let go first unless their
-// paths are asked for, and the gauges as their columns are written (g.gauges is empty after).
-py::dict gauge_columns(const Sites& sites, Gauges& g, bool with_paths) {
+// index in internal, external, sandwich, comb, T); with `file`, both blocks in that file instead
+// (ColumnSink). The stretches are let go first unless their paths are asked for, and the gauges
+// as their columns are written (g.gauges is empty after).
+py::dict gauge_columns(const Sites& sites, Gauges& g, bool with_paths, const std::string& file) {
   const auto& S = sites.sites;
   if (!with_paths) g.stretches = Stretches();
   const std::size_t n = g.gauges.size();
-  char *rd = nullptr, *id = nullptr;
-  py::bytes reals = blank_bytes(10 * sizeof(double) * n, rd);
-  py::bytes ints = blank_bytes(13 * sizeof(std::int32_t) * n, id);
+  ColumnSink sink(n, file);
+  char*& rd = sink.reals();
+  char*& id = sink.ints();
   py::list paths;
   // The gauges are consumed as the columns are written and their pages given back: on a full
   // layer both are gigabytes, and nothing reads the records afterwards.
@@ -168,6 +257,7 @@ py::dict gauge_columns(const Sites& sites, Gauges& g, bool with_paths) {
       std::memcpy(id, &w, sizeof w);
       id += sizeof w;
     }
+    sink.next();
     if (with_paths) {
       py::list pts;
       for (const Vec2& v : g.stretches[x.stretch].path) pts.append(py::make_tuple(v.x, v.y));
@@ -179,10 +269,7 @@ py::dict gauge_columns(const Sites& sites, Gauges& g, bool with_paths) {
     }
   }
   std::vector<Gauge>().swap(g.gauges);
-  py::dict out;
-  out["count"] = n;
-  out["reals"] = reals;
-  out["ints"] = ints;
+  py::dict out = sink.finish();
   out["paths"] = with_paths ? py::object(paths) : py::object(py::none());
   return out;
 }
@@ -356,7 +443,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "gauges_polygons",
       [](const py::object& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
          bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu, const std::string& gds,
-         int gds_layer, const std::string& gds_cell, const std::string& gauges_csv) {
+         int gds_layer, const std::string& gds_cell, const std::string& gauges_csv, const std::string& columns) {
         std::vector<Polygon> in = polygons_of(polys);
         Files files{csv, gds, gds_layer, dbu, gds_cell};
         GaugeOptions o;
@@ -397,7 +484,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
         d["seconds"].cast<py::dict>()["gauges"] = seconds;
         py::dict res;
         res["stretches"] = g.measurable;
-        res["gauges"] = gauge_columns(diagram.sites, g, with_paths);
+        res["gauges"] = gauge_columns(diagram.sites, g, with_paths, columns);
         res["typical_width"] = g.typical_width;
         res["space_limit"] = g.space_limit;
         res["diagram"] = d;
@@ -406,7 +493,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false, py::arg("paths") = false,
       py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("gds") = "", py::arg("gds_layer") = 0,
-      py::arg("gds_cell") = "VORONOI", py::arg("gauges_csv") = "",
+      py::arg("gds_cell") = "VORONOI", py::arg("gauges_csv") = "", py::arg("columns") = "",
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
       "Returns {'gauges': {'count': n, 'reals': bytes, 'ints': bytes, 'paths': [[(x, y)]] if paths=True else None},\n"
       "'stretches': n, ...}: the gauges in rank order as columns, float64 x10 per gauge (x1, y1, x2, y2, cx, cy, cd,\n"
@@ -416,7 +503,9 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "DBU throughout. space_limit_widths: spaces wider than this many typical widths are not pattern (0: keep all).\n"
       "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them (else they stream past, see\n"
       "voronoi_polygons). csv, gds, gds_layer, dbu:\n"
-      "as in voronoi_polygons, and gds_cell. gauges_csv: also write the gauges there (gauges.csv, micrometres).");
+      "as in voronoi_polygons, and gds_cell. gauges_csv: also write the gauges there (gauges.csv, micrometres).\n"
+      "columns: write the two column blocks into this file (reals for every gauge, then ints) instead of bytes:\n"
+      "'gauges' is then {'count', 'file', 'reals': None, 'ints': None, 'paths'}, for the caller to map.");
 
   m.def(
       "oasis_from_drawing",

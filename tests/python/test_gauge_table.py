@@ -2,6 +2,7 @@
 # columns the selection reads (spots, cd/extension pairs) and the flat polygon input must all
 # say the same as the plain lists they replace.
 #   PYTHONPATH=plugin/python:build python3 tests/python/test_gauge_table.py
+import os
 import unittest
 from array import array
 
@@ -59,6 +60,37 @@ class GaugeTableColumns(unittest.TestCase):
             self.assertEqual(len(failed), a.runs[key].n_failed)
             self.assertEqual(failed, list(b.runs[key].failed_spots))
             self.assertGreater(len(failed), 0)
+
+    def test_mapped_columns_are_the_bytes_and_leave_no_file(self):
+        # gauges.compute has the core write the columns to a file it maps (a full layer's
+        # columns are gigabytes); they must be the very bytes the core hands over in memory.
+        raw = core.gauges_polygons(self.polys)["gauges"]
+        self.assertIsNone(raw["file"])
+        reals, ints = self.table.columns()
+        self.assertEqual(reals.tobytes(), raw["reals"])
+        self.assertEqual(ints.tobytes(), raw["ints"])
+        self.assertEqual(len(self.table), raw["count"])
+        # The file is removed once mapped, and so is the file of a call that fails.
+        path = gauges.columns_file()
+        got = gauges.GaugeTable(core.gauges_polygons(self.polys, columns=path)["gauges"])
+        self.assertFalse(os.path.exists(path))
+        self.assertEqual(list(got), self.rows)
+        path = gauges.columns_file()
+        with open(path, "wb") as f:
+            f.write(b"short")
+        with self.assertRaises(ValueError):
+            gauges.GaugeTable({"count": 3, "file": path, "reals": None, "ints": None, "paths": None})
+        self.assertFalse(os.path.exists(path))
+        made = []
+        real = gauges.columns_file
+        gauges.columns_file = lambda: made.append(real()) or made[-1]
+        try:
+            with self.assertRaises(ValueError):
+                gauges.compute([([(0, 0), (2 ** 31, 0), (2 ** 31, 10), (0, 10)], [])])  # beyond the core's range
+        finally:
+            gauges.columns_file = real
+        self.assertEqual(len(made), 1)
+        self.assertFalse(os.path.exists(made[0]))
 
     def test_flat_polygons_give_the_same_gauges(self):
         flat = Polygons.of(self.polys)

@@ -27,22 +27,19 @@ def cell_name(which, g, dbu):
     return "%s_r%06d_%s_%s" % (PREFIX[which], g.rank, g.type, score)
 
 
-def write_library(path, which, patterns, region, layer, datatype, dbu):
-    """Writes the clips of one set; returns the cell names in order."""
+def write_library(path, which, patterns, source, index, layer, datatype, dbu):
+    """Writes the clips of one set, cut from the shapes of layer `index` in the cell `source` and below;
+    returns the cell names in order."""
     lib = pya.Layout()
     lib.dbu = dbu
     li = lib.layer(pya.LayerInfo(layer, datatype))
     lg = lib.layer(pya.LayerInfo(layer, GAUGE_DATATYPE, "gauges"))
     lw = lib.layer(pya.LayerInfo(layer, WINDOW_DATATYPE, "windows"))
     lm = lib.layer(pya.LayerInfo(layer, MARKER_DATATYPE, "markers"))
-    # The layer's shapes in a cell of their own, for box queries: `region & box` scans the whole
-    # layer, minutes for the patterns of a large one; the shapes that overlap the window give the
-    # same clip.
-    source = pya.Layout()
-    source.dbu = dbu
-    shapes_cell = source.create_cell("SOURCE")
-    ls = source.layer()
-    shapes_cell.shapes(ls).insert(region)
+    # Only the shapes that overlap the window, found through the layout's own box trees (a
+    # merged region of the whole layer `& box` scans all of it: minutes for the patterns of a
+    # large layer; a copy of it to query would hold the layer once more). Merged semantics: the
+    # shapes are merged as they are clipped, so the clip is the merged layer's.
     names = []
     # Inserting a Region updates the whole layout unless it is marked under construction:
     # without this every clip costs time in proportion to the clips before it.
@@ -52,7 +49,7 @@ def write_library(path, which, patterns, region, layer, datatype, dbu):
         cell = lib.create_cell(cell_name(which, g, dbu))
         names.append(cell.name)
         box = window_box(p.box)
-        near = pya.Region(shapes_cell.begin_shapes_rec_overlapping(ls, box))
+        near = pya.Region(source.begin_shapes_rec_overlapping(index, box))
         cell.shapes(li).insert(near & pya.Region(box))
         cell.shapes(lw).insert(box)
         a, b = pya.Point(round(g.x1), round(g.y1)), pya.Point(round(g.x2), round(g.y2))

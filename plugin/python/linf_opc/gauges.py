@@ -5,6 +5,9 @@ out: Gauges: every gauge candidate of the layer, ranked (rank 1 = most likely to
      bridge), with the diagram's summary and timings. The diagram is built and checked first.
 The rules where the thesis leaves a choice open are in the README, "Gauges".
 """
+import mmap
+import os
+import tempfile
 import time
 from array import array
 from collections import namedtuple
@@ -23,13 +26,32 @@ Gauge = namedtuple("Gauge", "type x1 y1 x2 y2 cx cy cd score norm_score tiebreak
 class GaugeTable(Sequence):
     """The ranked gauges as the core's columns (see gauges_polygons), a Gauge made on access:
     a large layer has millions of gauges, and a tuple each would be most of the flow's memory.
-    A read-only sequence: len, indexing (slices give lists), iteration in rank order."""
+    A read-only sequence: len, indexing (slices give lists), iteration in rank order.
+    Columns the core wrote to a file (columns["file"]) are mapped, not read: the file is removed
+    at once and its pages stay the kernel's to drop and read again, so that a layer of millions
+    of gauges does not hold them in memory (132 bytes a gauge)."""
 
     def __init__(self, columns):
         self._n = columns["count"]
-        self._reals = memoryview(columns["reals"]).cast("d")
-        self._ints = memoryview(columns["ints"]).cast("i")
+        if columns.get("file"):
+            reals, ints = self._mapped(columns["file"], self._n)
+        else:
+            reals, ints = columns["reals"], columns["ints"]
+        self._reals = memoryview(reals).cast("d")
+        self._ints = memoryview(ints).cast("i")
         self._paths = columns["paths"]
+
+    def _mapped(self, path, n):
+        try:
+            with open(path, "rb") as f:
+                size = os.fstat(f.fileno()).st_size
+                if size != (80 + 52) * n:
+                    raise ValueError("the gauge columns file %s holds %d bytes, not %d" % (path, size, 132 * n))
+                self._map = mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) if n else b""
+        finally:
+            remove_columns_file(path)
+        whole = memoryview(self._map)
+        return whole[:80 * n], whole[80 * n:]
 
     @classmethod
     def of(cls, gauges):
@@ -117,6 +139,20 @@ class Gauges:
         return r
 
 
+def columns_file():
+    """A fresh temporary file for the core to write the gauge columns into (GaugeTable maps it)."""
+    fd, path = tempfile.mkstemp(prefix="linf_opc-gauges-", suffix=".columns")
+    os.close(fd)
+    return path
+
+
+def remove_columns_file(path):
+    try:
+        os.remove(path)
+    except OSError:
+        pass
+
+
 def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, draw_layer=None,
             with_paths=False, tile=-1, csv_path=None, dbu=1.0, gauges_csv=None, draw_cell="VORONOI"):
     """draw_layer: a layer number: also keep the diagram, drawable (Gauges.pieces_diagram, a
@@ -127,11 +163,17 @@ def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, d
     `dbu`; Gauges.csv_path)."""
     from .diagram import Diagram
     t0 = time.perf_counter()
-    raw, gds = drawing.drawn_by(
-        lambda gds: core.gauges_polygons(core_input(polygons), check, 2000, 0, tooth_fraction, space_limit_widths,
-                                         False, with_paths, tile=tile, csv=csv_path or "", dbu=dbu, gds=gds,
-                                         gds_layer=draw_layer or 0, gds_cell=draw_cell, gauges_csv=gauges_csv or ""),
-        draw_layer is not None)
+    columns = columns_file()
+    try:
+        raw, gds = drawing.drawn_by(
+            lambda gds: core.gauges_polygons(core_input(polygons), check, 2000, 0, tooth_fraction, space_limit_widths,
+                                             False, with_paths, tile=tile, csv=csv_path or "", dbu=dbu, gds=gds,
+                                             gds_layer=draw_layer or 0, gds_cell=draw_cell,
+                                             gauges_csv=gauges_csv or "", columns=columns),
+            draw_layer is not None)
+    except BaseException:
+        remove_columns_file(columns)
+        raise
     out = Gauges(raw, time.perf_counter() - t0)
     out.csv_path = gauges_csv  # where the core already wrote gauges.csv, if it did
     if gds:
