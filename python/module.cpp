@@ -268,7 +268,7 @@ py::dict gauge_columns(const Sites& sites, Gauges& g, bool with_paths, const std
       released = done;
     }
   }
-  std::vector<Gauge>().swap(g.gauges);
+  g.gauges = Paged<Gauge>();
   py::dict out = sink.finish();
   out["paths"] = with_paths ? py::object(paths) : py::object(py::none());
   return out;

@@ -15,7 +15,7 @@ using namespace detail;
 // One pass of the subdivision over `root` with the sites `ids`, skipping boxes inside `hole`
 // and the parts of pieces there: the far field, or everything in one pass. The top levels,
 // breadth first, become the workers' tasks.
-std::vector<Piece> run(const std::vector<Site>& sites, std::vector<int> ids, const Box& root, const Box* hole,
+std::vector<Piece> run(const SiteList& sites, std::vector<int> ids, const Box& root, const Box* hole,
                        const BuildOptions& opt, double tau, BuildStats& st) {
   const Model model(sites, std::move(ids), opt, tau);
   std::vector<int> all(model.S.size());

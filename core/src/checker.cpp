@@ -20,27 +20,37 @@ namespace bgi = boost::geometry::index;
 namespace {
 using BPt = bg::model::point<double, 2, bg::cs::cartesian>;
 using BBox = bg::model::box<BPt>;
+// The sites' tree holds their boxes in the layout's own integers (a layer has millions of
+// sites: 20 bytes an entry instead of 40); queries are widened to whole numbers, so a site
+// found by a double box is found by its integer cover.
+using IPt = bg::model::point<std::int32_t, 2, bg::cs::cartesian>;
+using IBox = bg::model::box<IPt>;
+using SiteEntry = std::pair<IBox, std::int32_t>;
+using Tree = bgi::rtree<SiteEntry, bgi::rstar<16>>;
 using Entry = std::pair<BBox, std::int32_t>;
-using Tree = bgi::rtree<Entry, bgi::rstar<16>>;
+using PairTree = bgi::rtree<Entry, bgi::rstar<16>>;  // the checker's point pairs (a few thousand)
 
 // A site's bounding box as an R-tree entry (assignable, as the packing algorithm needs).
 struct EntryOf {
-  const std::vector<Site>* s;
-  Entry operator()(std::int32_t i) const {
+  const SiteList* s;
+  SiteEntry operator()(std::int32_t i) const {
     const Site& t = (*s)[std::size_t(i)];
-    return Entry(BBox(BPt(double(std::min(t.a.x, t.b.x)), double(std::min(t.a.y, t.b.y))),
-                      BPt(double(std::max(t.a.x, t.b.x)), double(std::max(t.a.y, t.b.y)))),
-                 i);
+    return SiteEntry(IBox(IPt(std::int32_t(std::min(t.a.x, t.b.x)), std::int32_t(std::min(t.a.y, t.b.y))),
+                          IPt(std::int32_t(std::max(t.a.x, t.b.x)), std::int32_t(std::max(t.a.y, t.b.y)))),
+                     i);
   }
 };
 
-BBox square(double x, double y, double r) { return BBox(BPt(x - r, y - r), BPt(x + r, y + r)); }
+std::int32_t down(double v) { return std::int32_t(std::max(-2147483647.0, std::min(2147483647.0, std::floor(v)))); }
+std::int32_t up(double v) { return std::int32_t(std::max(-2147483647.0, std::min(2147483647.0, std::ceil(v)))); }
+IBox square(double x, double y, double r) { return IBox(IPt(down(x - r), down(y - r)), IPt(up(x + r), up(y + r))); }
+IPt grid_point(double x, double y) { return IPt(down(x + 0.5), down(y + 0.5)); }
 
 class SiteTree {
  public:
   // Packed from entries made on the fly: a vector of them would cost as much again as the
   // tree while it is built (hundreds of MB on a layer of millions of sites).
-  explicit SiteTree(const std::vector<Site>& s) : s_(s) {
+  explicit SiteTree(const SiteList& s) : s_(s) {
     const boost::counting_iterator<std::int32_t> first(0), last(std::int32_t(s.size()));
     const EntryOf entry{&s};
     tree_ = Tree(boost::make_transform_iterator(first, entry), boost::make_transform_iterator(last, entry));
@@ -56,7 +66,7 @@ class SiteTree {
   }
   void k_nearest(double x, double y, unsigned k, std::vector<std::int32_t>& out) const {
     out.clear();
-    for (auto it = tree_.qbegin(bgi::nearest(BPt(x, y), k)); it != tree_.qend(); ++it) out.push_back(it->second);
+    for (auto it = tree_.qbegin(bgi::nearest(grid_point(x, y), k)); it != tree_.qend(); ++it) out.push_back(it->second);
   }
   // The owner of (x, y) under the ownership rule (least L-inf, then least L1, then point
   // before segment, then lower index) and its distance. `clear` is false when some other
@@ -64,7 +74,8 @@ class SiteTree {
   struct Owner { std::int32_t site = -1; double dist = INFINITY; bool clear = true; };
   Owner owner(double x, double y, double tol) const {
     double bound = INFINITY;
-    for (auto it = tree_.qbegin(bgi::nearest(BPt(x, y), 2)); it != tree_.qend(); ++it)
+    // Any two sites bound the owner's distance; the nearest boxes to the grid point are a good guess.
+    for (auto it = tree_.qbegin(bgi::nearest(grid_point(x, y), 2)); it != tree_.qend(); ++it)
       bound = std::min(bound, dist_site(x, y, s_[it->second]));
     std::vector<std::pair<double, std::int32_t>> c;
     for (auto it = tree_.qbegin(bgi::intersects(square(x, y, bound + tol + 1e-9))); it != tree_.qend(); ++it)
@@ -94,7 +105,7 @@ class SiteTree {
     const bool pa = s_[a].is_point(), pb = s_[b].is_point();
     return pa != pb ? pa : a < b;
   }
-  const std::vector<Site>& s_;
+  const SiteList& s_;
   Tree tree_;
 };
 
@@ -115,7 +126,7 @@ bool segments_cross(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) 
 }  // namespace
 
 struct Checker::Impl {
-  const std::vector<Site>& S;
+  const SiteList& S;
   Box clip;
   CheckOptions opt;
   double tol = 0;
@@ -123,10 +134,10 @@ struct Checker::Impl {
   CheckReport rep;
   struct Pair { Vec2 p, q; std::int32_t sp, sq; };
   std::vector<Pair> separated;
-  std::unique_ptr<Tree> pairs;
+  std::unique_ptr<PairTree> pairs;
   std::vector<char> crossed;
 
-  Impl(const std::vector<Site>& s, const Box& c, const CheckOptions& o) : S(s), clip(c), opt(o), sites(s) {}
+  Impl(const SiteList& s, const Box& c, const CheckOptions& o) : S(s), clip(c), opt(o), sites(s) {}
 
   // Completeness: a change of owner (by the ownership rule) between two close points needs a
   // piece between them. The pairs are drawn first and indexed (a few thousand); then every
@@ -187,7 +198,7 @@ struct Checker::Impl {
                            BPt(std::max(x.p.x, x.q.x), std::max(x.p.y, x.q.y))),
                       std::int32_t(i));
     }
-    pairs = std::make_unique<Tree>(pe.begin(), pe.end());
+    pairs = std::make_unique<PairTree>(pe.begin(), pe.end());
     crossed.assign(separated.size(), 0);
   }
 

@@ -267,7 +267,7 @@ class ExternalAt {
 
 // Sandwich, comb and T gauges on one internal stretch E_y between edges a and b of a shape.
 void context_gauges(const Sites& sites, const Stretches& all, std::int32_t iy, const ExternalAt& external_at,
-                    const GaugeOptions& opt, std::vector<Gauge>& out) {
+                    const GaugeOptions& opt, Paged<Gauge>& out) {
   const Stretch ey = all[iy];
   const Site& sa = sites.sites[ey.a];
   const double ex = double(sa.b.x - sa.a.x), ey_ = double(sa.b.y - sa.a.y);

@@ -20,12 +20,12 @@ namespace {
 // Local ids run in the order of the global ids (`global`), so every decision that compares
 // site indices (the tie rule) is the same in any tile.
 struct Model {
-  std::vector<Site> S;
+  SiteList S;
   std::vector<int> global;
   BuildOptions opt;
   std::vector<DistFn> f, g;  // L-inf, and the L1 tie-break
   double tau = 0;            // rounding allowance in pruning decisions, the same in every tile
-  Model(const std::vector<Site>& all, std::vector<int> ids, const BuildOptions& o, double tau_)
+  Model(const SiteList& all, std::vector<int> ids, const BuildOptions& o, double tau_)
       : global(std::move(ids)), opt(o), tau(tau_) {
     S.reserve(global.size());
     f.reserve(global.size());

@@ -146,6 +146,8 @@ Sites sites_of_plain(const std::vector<Point>& points, const std::vector<Segment
   Sites s;
   std::map<Point, std::int32_t> at;
   auto point_site = [&](const Point& p, std::int32_t shape) {
+    if (p.x <= -kLimit || p.x >= kLimit || p.y <= -kLimit || p.y >= kLimit)
+      throw std::invalid_argument("coordinate outside +-2^30 database units");
     auto it = at.find(p);
     if (it != at.end()) return it->second;
     Site v;

@@ -317,11 +317,6 @@ void Stretches::keep_only(const std::vector<bool>& keep) {
     at += x.count;
     heads_[h++] = x;
   }
-  // The pages past the kept part are given back; the vectors keep their room (writing there
-  // again reads zeros first, which it overwrites).
-  detail::release_pages(heads_.data() + h, heads_.data() + heads_.size());
-  detail::release_pages(points_.data() + at, points_.data() + points_.size());
-  detail::release_pages(clearance_.data() + at, clearance_.data() + clearance_.size());
   heads_.resize(h);
   points_.resize(at);
   clearance_.resize(at);

@@ -489,7 +489,7 @@ class Builder {
 
 
   const Model& m_;  // the geometry: sites, distance functions, the ownership rule
-  const std::vector<Site>& S_;
+  const SiteList& S_;
   const Box clip_;
   const Box hole_;
   const bool has_hole_;

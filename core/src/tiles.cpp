@@ -35,7 +35,7 @@ std::vector<Box> grid_boxes(const Box& root, int level) {
 // Site ids bucketed by bounding box over a uniform grid of the root (compressed rows).
 class SiteGrid {
  public:
-  SiteGrid(const std::vector<Site>& s, const Box& root, int level) : s_(s), root_(root), n_(std::size_t(1) << level) {
+  SiteGrid(const SiteList& s, const Box& root, int level) : s_(s), root_(root), n_(std::size_t(1) << level) {
     cw_ = (root.x2 - root.x1) / double(n_), ch_ = (root.y2 - root.y1) / double(n_);
     start_.assign(n_ * n_ + 1, 0);
     for (int pass = 0; pass < 2; ++pass) {
@@ -93,7 +93,7 @@ class SiteGrid {
     j2 = std::min(n_ - 1, cell(b.y2 + r, root_.y1, ch_) + 1);
   }
 
-  const std::vector<Site>& s_;
+  const SiteList& s_;
   Box root_;
   std::size_t n_;
   double cw_ = 1, ch_ = 1;
@@ -105,7 +105,7 @@ class SiteGrid {
 // distance over b among the sites found, every owner lies within U of b; the search radius
 // grows to U (+ the rounding allowance) until it covers it. The site attaining U is then
 // found too, so the builder's first pruning gives what it gives with every site.
-void gather(const SiteGrid& grid, const std::vector<Site>& sites, const Box& b, const Box& root, double tau,
+void gather(const SiteGrid& grid, const SiteList& sites, const Box& b, const Box& root, double tau,
             std::vector<int>& out, std::vector<std::uint32_t>& seen, std::uint32_t& stamp) {
   double r = std::max(b.x2 - b.x1, b.y2 - b.y1);
   const double span = std::max(root.x2 - root.x1, root.y2 - root.y1);
@@ -135,7 +135,7 @@ constexpr std::size_t kAutoTileSites = std::size_t(1) << 16;
 
 }  // namespace
 
-void build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau, BuildStats& st,
+void build_tiled(const SiteList& sites, const Box& root, const BuildOptions& opt, double tau, BuildStats& st,
                  const PartSink& sink) {
   const int T = task_level(sites.size());
   const std::size_t nt = std::size_t(1) << T;

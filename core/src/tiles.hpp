@@ -18,7 +18,7 @@ namespace linf::detail {
 
 // Pieces (global site ids, joined within each tile, not across tiles) of the diagram inside
 // `root`, handed to `sink` tile by tile with the tile's box.
-void build_tiled(const std::vector<Site>& sites, const Box& root, const BuildOptions& opt, double tau, BuildStats& st,
+void build_tiled(const SiteList& sites, const Box& root, const BuildOptions& opt, double tau, BuildStats& st,
                  const PartSink& sink);
 
 }  // namespace linf::detail

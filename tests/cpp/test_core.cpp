@@ -241,3 +241,12 @@ TEST(Builder, RowOfEqualBoxesFarFromOthers) {
   RecordProperty("solved_sites", int(n));
   EXPECT_LT(n, 700000u);
 }
+
+// Plain input is held to the layout's range as polygons are (the checker indexes the sites'
+// boxes in 32-bit integers).
+TEST(Sites, PlainInputBeyondTheRangeIsRefused) {
+  using linf::Point;
+  EXPECT_THROW(linf::sites_of_plain({Point{Coord(1) << 31, 0}}, {}), std::invalid_argument);
+  EXPECT_THROW(linf::sites_of_plain({}, {{Point{0, 0}, Point{0, -(Coord(1) << 30)}}}), std::invalid_argument);
+  EXPECT_EQ(linf::sites_of_plain({Point{(Coord(1) << 30) - 1, 0}}, {}).sites.size(), 1u);
+}

@@ -34,9 +34,10 @@ std::vector<Reported> gauges(const std::vector<Polygon>& polys) {
   return out;
 }
 
-template <class G>
-std::vector<G> of_type(const std::vector<G>& all, GaugeType t) {
-  std::vector<G> out;
+template <class All>
+auto of_type(const All& all, GaugeType t) {
+  std::vector<typename All::value_type> out;
+  using G = typename All::value_type;
   for (const G& g : all)
     if (g.type == t) out.push_back(g);
   return out;

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "linf/paged.hpp"
 #include "linf/piece.hpp"
 #include "linf/stretch.hpp"
 
@@ -50,7 +51,8 @@ struct GaugeOptions {
 struct Gauges {
   Stretches stretches;        // those the gauges lie on (Gauge::stretch, Gauge::neighbour)
   std::size_t measurable = 0; // the measurable stretches considered (see gauges_of)
-  std::vector<Gauge> gauges;  // ranked: gauges[i] has rank i + 1, the most critical first
+  Paged<Gauge> gauges;        // ranked: gauges[i] has rank i + 1, the most critical first (a
+                              // mapped file: a full layer has tens of millions)
   double top_score = 0;       // the highest score among them
   double typical_width = 0;   // extension-weighted median width of the internal gauges
   double space_limit = 0;     // widest space reported (infinite if no limit)

@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "linf/paged.hpp"
+
 namespace linf {
 
 using Coord = std::int64_t;
@@ -39,10 +41,14 @@ struct Site {
   bool is_point() const { return a == b; }
 };
 
+// The sites of a layer: eight a wire, millions on a full layer, so Paged (a mapped file the
+// kernel may write out and drop; see linf/paged.hpp).
+using SiteList = Paged<Site>;
+
 // All sites of one diagram with the rings they came from. Rings are oriented
 // so that the interior of their polygon is on the left of every edge.
 struct Sites {
-  std::vector<Site> sites;
+  SiteList sites;
   std::vector<Ring> rings;
   std::vector<std::int32_t> ring_shape;
 };

@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "linf/paged.hpp"
 #include "linf/piece.hpp"
 
 namespace linf {
@@ -40,7 +41,8 @@ struct Stretch {
 };
 
 // All stretches of a diagram in three flat arrays: a layer has millions, and a pair of heap
-// vectors each would cost more than the stretches themselves.
+// vectors each would cost more than the stretches themselves. The arrays are Paged (mapped
+// temporary files): on a full layer they are gigabytes that the kernel may write out and drop.
 class Stretches {
  public:
   std::size_t size() const { return heads_.size(); }
@@ -66,8 +68,8 @@ class Stretches {
   void lengthen(double d) { heads_.back().length += d; }
   bool empty_path() const { return heads_.back().count == 0; }
 
-  // Keeps the stretches i with keep[i], in order, and gives the memory of the rest back to the
-  // system: on a full layer half the measurable stretches make no gauge.
+  // Keeps the stretches i with keep[i], in order, and gives the room of the rest back: on a full
+  // layer half the measurable stretches make no gauge.
   void keep_only(const std::vector<bool>& keep);
 
  private:
@@ -77,9 +79,9 @@ class Stretches {
     double length;
     PieceKind kind;
   };
-  std::vector<Head> heads_;
-  std::vector<Vec2> points_;
-  std::vector<double> clearance_;
+  Paged<Head> heads_;
+  Paged<Vec2> points_;
+  Paged<double> clearance_;
 };
 
 // Which owner pairs (a < b, with the stretch's kind) get stretches.
