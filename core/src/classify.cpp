@@ -14,11 +14,10 @@ bool inside_near(const Sites& s, std::int32_t id, const Vec2& p) {
   const Site& t = s.sites[id];
   if (!t.is_point())
     return cross(double(t.b.x - t.a.x), double(t.b.y - t.a.y), p.x - double(t.a.x), p.y - double(t.a.y)) > 0;
-  const Ring& r = s.rings[t.ring];
-  const std::size_t n = r.size();
+  // A ring vertex's neighbours are the far ends of its incoming and outgoing edges.
   const Point& v = t.a;
-  const Point& prev = r[(std::size_t(t.index) + n - 1) % n];
-  const Point& next = r[(std::size_t(t.index) + 1) % n];
+  const Point& prev = s.sites[t.end0].a;
+  const Point& next = s.sites[t.end1].b;
   const double ox = double(next.x - v.x), oy = double(next.y - v.y);  // outgoing edge
   const double ix = double(prev.x - v.x), iy = double(prev.y - v.y);  // incoming edge, reversed
   const double ux = p.x - double(v.x), uy = p.y - double(v.y);

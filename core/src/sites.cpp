@@ -113,13 +113,11 @@ std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in) {
 
 Sites sites_of_polygons(const std::vector<Polygon>& merged) {
   Sites s;
+  std::int32_t ri = 0;
   for (std::size_t pi = 0; pi < merged.size(); ++pi) {
     std::vector<const Ring*> rings{&merged[pi].outer};
     for (const Ring& h : merged[pi].holes) rings.push_back(&h);
     for (const Ring* r : rings) {
-      const std::int32_t ri = std::int32_t(s.rings.size());
-      s.rings.push_back(*r);
-      s.ring_shape.push_back(std::int32_t(pi));
       const std::int32_t n = std::int32_t(r->size());
       const std::int32_t base = std::int32_t(s.sites.size());
       // Layout: vertex i at base + 2i, edge i (vertex i -> i+1) at base + 2i + 1.
@@ -137,6 +135,7 @@ Sites sites_of_polygons(const std::vector<Polygon>& merged) {
         e.end1 = base + 2 * ((i + 1) % n);
         s.sites.push_back(e);
       }
+      ++ri;
     }
   }
   return s;

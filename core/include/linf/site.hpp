@@ -29,12 +29,12 @@ struct Polygon {
 };
 
 // A site of the segment Voronoi diagram: a point (a == b) or an open segment.
-// `shape` says which merged polygon (or which plain input) the site belongs to;
-// the ring data lets the classifier tell inside from outside.
+// `shape` says which merged polygon (or which plain input) the site belongs to; with `ring`
+// and the neighbours (end0, end1) it lets the classifier tell inside from outside.
 struct Site {
   Point a, b;
   std::int32_t shape = -1;  // polygon index after merging, or plain-input index
-  std::int32_t ring = -1;   // ring index in `Sites::rings`, -1 for plain input
+  std::int32_t ring = -1;   // which ring of the layer (outer rings and holes numbered in turn), -1 for plain input
   std::int32_t index = -1;  // vertex index (point) or edge index (segment: edge a->b) in its ring
   // A segment's endpoint sites, or for a ring vertex its incoming/outgoing edge sites; -1 if none.
   std::int32_t end0 = -1, end1 = -1;
@@ -45,12 +45,11 @@ struct Site {
 // kernel may write out and drop; see linf/paged.hpp).
 using SiteList = Paged<Site>;
 
-// All sites of one diagram with the rings they came from. Rings are oriented
-// so that the interior of their polygon is on the left of every edge.
+// All sites of one diagram. Their rings are oriented so that the interior of their polygon is
+// on the left of every edge; a ring vertex's neighbours are the far ends of its edges (end0,
+// end1), so the rings themselves are not kept.
 struct Sites {
   SiteList sites;
-  std::vector<Ring> rings;
-  std::vector<std::int32_t> ring_shape;
 };
 
 }  // namespace linf
