@@ -67,7 +67,7 @@ def cgal(polygons_json):
 
 reach = "--reach" in args
 print("| input | polygons | segments | load | diagram | gauges | selection | split | tiles (largest, sites) | "
-      "peak MB | CGAL construction | diagram / CGAL | width+space | flow / (width+space) |%s%s"
+      "peak MB: RSS / anonymous (RSS after load) | CGAL construction | diagram / CGAL | width+space | flow / (width+space) |%s%s"
       % (" width+space at the gauges' reach (t width, space) | flow / that |" if reach else "",
          " diagram 1 thread / 2 threads |" if "--threads" in args else ""))
 print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|%s%s"
@@ -83,7 +83,7 @@ for inp, layer, cell, markers in inputs:
     row = ("| %s | %d | %d | %.2f s | %.2f s | %.2f s | %.2f s | %.2f s | %d (%d of %d) | %s | %s | %s | %.2f s | %.1f |"
            % (two["input"] + (" " + cell if cell else ""), two["polygons"], two["segments"], s["load"], s["diagram"],
               s["gauges"], s["selection"], s["split"], tl["tiles"], tl["largest_tile_sites"], two["sites"],
-              "%.0f (load %.0f)" % (two["peak_rss_mb"], two["peak_mb_after"]["load"]), "%.2f s" % t_cgal if t_cgal else why, "%.1f" % (s["diagram"] / t_cgal) if t_cgal else "-",
+              "%.0f / %.0f (load %.0f)" % (two["peak_rss_mb"], two["peak_anon_mb"], two["peak_mb_after"]["load"]), "%.2f s" % t_cgal if t_cgal else why, "%.1f" % (s["diagram"] / t_cgal) if t_cgal else "-",
               s["klayout_width_space"], flow / s["klayout_width_space"]))
     if reach:
         row += " %.2f s (%d, %d DBU) | %.2f |" % (s["klayout_width_space_reach"], two["reach_dbu"][0], two["reach_dbu"][1],

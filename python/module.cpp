@@ -96,6 +96,7 @@ py::dict to_python_summary(const Diagram& d, const CheckReport& c) {
   py::dict out;
   out["check"] = check;
   out["sites"] = d.sites.sites.size();
+  out["polygons"] = d.sites.shapes;  // after merging
   out["clip"] = py::make_tuple(d.clip.x1, d.clip.y1, d.clip.x2, d.clip.y2);
   py::dict tiles;
   tiles["tiles"] = d.tiles;
@@ -569,7 +570,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
         if (ys.size() != xs.size() || ts.size() != xs.size() || ns.size() != xs.size())
           throw py::value_error("x, y, types and norms must have one value per gauge");
         const Doubles mv = doubles_of(markers, 4, "markers");
-        std::vector<Spot> sp;
+        Paged<Spot> sp;  // 32 bytes a gauge: a mapped file on a full layer
         sp.reserve(xs.size());
         for (std::size_t i = 0; i < xs.size(); ++i) sp.push_back({{xs[i], ys[i]}, std::int32_t(i), ts[i], ns[i]});
         auto tally = [](const Tally& t) {
@@ -590,7 +591,8 @@ PYBIND11_MODULE(linf_opc_core, m) {
             {
               py::gil_scoped_release unlocked;
               const auto t0 = std::chrono::steady_clock::now();
-              s = brute ? select_windows_brute(sp, mk, side, c) : select_windows(sp, mk, side, c);
+              s = brute ? select_windows_brute(sp.data(), sp.size(), mk, side, c)
+                        : select_windows(sp.data(), sp.size(), mk, side, c);
               seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             }
             py::list windows;

@@ -29,11 +29,11 @@ Box window_at(const Vec2& c, double side) {
 // The loop shared by the fast and the brute-force selection: `query(window, out)` lists the
 // markers the window covers.
 template <class Query>
-Selection run(const std::vector<Spot>& ranked, std::size_t n_markers, double side, Query query) {
+Selection run(const Spot* ranked, std::size_t n, std::size_t n_markers, double side, Query query) {
   Selection s;
   std::vector<char> done(n_markers, 0);
   std::vector<std::int32_t> hit;
-  for (std::size_t i = 0; i < ranked.size() && s.covered < std::int32_t(n_markers); ++i) {
+  for (std::size_t i = 0; i < n && s.covered < std::int32_t(n_markers); ++i) {
     ++s.traversed;
     const Box w = window_at(ranked[i].at, side);
     hit.clear();
@@ -81,7 +81,7 @@ bool covers(const Box& w, const Box& m, Cover mode) {
   return false;
 }
 
-Selection select_windows(const std::vector<Spot>& ranked, const std::vector<Box>& markers, double side, Cover mode) {
+Selection select_windows(const Spot* ranked, std::size_t n, const std::vector<Box>& markers, double side, Cover mode) {
   // Mode A queries the marker centres, B and C the marker boxes; each query is the closed
   // intersection with the window, then refined by the exact predicate (strictness, containment).
   std::vector<Entry> entries;
@@ -97,7 +97,7 @@ Selection select_windows(const std::vector<Spot>& ranked, const std::vector<Box>
   }
   const bgi::rtree<Entry, bgi::rstar<16>> tree(entries.begin(), entries.end());
   std::vector<Entry> found;
-  return run(ranked, markers.size(), side, [&](const Box& w, std::vector<std::int32_t>& out) {
+  return run(ranked, n, markers.size(), side, [&](const Box& w, std::vector<std::int32_t>& out) {
     found.clear();
     if (mode == Cover::Inside)
       tree.query(bgi::covered_by(to_bbox(w)), std::back_inserter(found));
@@ -108,9 +108,9 @@ Selection select_windows(const std::vector<Spot>& ranked, const std::vector<Box>
   });
 }
 
-Selection select_windows_brute(const std::vector<Spot>& ranked, const std::vector<Box>& markers, double side,
+Selection select_windows_brute(const Spot* ranked, std::size_t n, const std::vector<Box>& markers, double side,
                                Cover mode) {
-  return run(ranked, markers.size(), side, [&](const Box& w, std::vector<std::int32_t>& out) {
+  return run(ranked, n, markers.size(), side, [&](const Box& w, std::vector<std::int32_t>& out) {
     for (std::size_t i = 0; i < markers.size(); ++i)
       if (covers(w, markers[i], mode)) out.push_back(std::int32_t(i));
   });

@@ -138,6 +138,7 @@ Sites sites_of_polygons(const std::vector<Polygon>& merged) {
       ++ri;
     }
   }
+  s.shapes = merged.size();
   return s;
 }
 
@@ -168,6 +169,7 @@ Sites sites_of_plain(const std::vector<Point>& points, const std::vector<Segment
     s.sites.push_back(e);
   }
   for (const Point& p : points) point_site(p, shape++);
+  s.shapes = std::size_t(shape);
   return s;
 }
 

@@ -66,7 +66,8 @@ res = pya.Layout()
 res.read(os.path.join(work, "voronoi.oas"))
 top = res.top_cells()[0]
 inp = res.find_layer(L, D)
-expect(inp is not None and pya.Region(top.shapes(inp)).count() == region.count(), "input layer copied")
+# The layer as drawn (the core merges it for the diagram): the same area as the merged layer.
+expect(inp is not None and (pya.Region(top.shapes(inp)) ^ region).is_empty(), "input layer copied")
 for i, kind in enumerate(["internal", "external", "notch", "adjacent"]):
     li = res.find_layer(L, 200 + i)
     n = top.shapes(li).size() if li is not None else 0

@@ -235,9 +235,12 @@ def main():
     ly.read(input)
     cell = ly.cell(globals().get("cell")) if globals().get("cell") else ly.top_cells()[0]
     l, d = (int(v) for v in layer.split("/"))
-    region = layer_io.region_of(cell, ly.find_layer(l, d))
+    drawn = layer_io.region_of(cell, ly.find_layer(l, d))
+    # The gauges from the shapes as drawn (the core merges them, as in the flow); the features
+    # and the DRC from KLayout's own merge of the layer.
+    result = gauge_stage.compute(layer_io.polygons_of(drawn), with_paths=True)
+    region = drawn.merged()
     polygons = layer_io.polygons_of(region)
-    result = gauge_stage.compute(polygons, with_paths=True)
     edges_at = {}
     for outer, holes in polygons:
         for ring in [outer] + holes:

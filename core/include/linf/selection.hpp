@@ -54,12 +54,22 @@ struct Selection {
   Tally used_by_type, failed_by_type;
 };
 
-// Spatial queries go through a Boost.Geometry R-tree over the markers.
-Selection select_windows(const std::vector<Spot>& ranked, const std::vector<Box>& markers, double side, Cover mode);
+// Spatial queries go through a Boost.Geometry R-tree over the markers. The n ranked spots may
+// be any contiguous array (a full layer's are a Paged one: tens of millions).
+Selection select_windows(const Spot* ranked, std::size_t n, const std::vector<Box>& markers, double side, Cover mode);
 
 // The same by brute force over all markers: the test oracle for select_windows.
-Selection select_windows_brute(const std::vector<Spot>& ranked, const std::vector<Box>& markers, double side,
+Selection select_windows_brute(const Spot* ranked, std::size_t n, const std::vector<Box>& markers, double side,
                                Cover mode);
+
+inline Selection select_windows(const std::vector<Spot>& ranked, const std::vector<Box>& markers, double side,
+                                Cover mode) {
+  return select_windows(ranked.data(), ranked.size(), markers, side, mode);
+}
+inline Selection select_windows_brute(const std::vector<Spot>& ranked, const std::vector<Box>& markers, double side,
+                                      Cover mode) {
+  return select_windows_brute(ranked.data(), ranked.size(), markers, side, mode);
+}
 
 bool covers(const Box& window, const Box& marker, Cover mode);
 

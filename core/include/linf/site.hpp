@@ -50,6 +50,7 @@ using SiteList = Paged<Site>;
 // end1), so the rings themselves are not kept.
 struct Sites {
   SiteList sites;
+  std::size_t shapes = 0;  // merged polygons, or plain input items (Site::shape < shapes)
 };
 
 }  // namespace linf

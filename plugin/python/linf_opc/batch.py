@@ -118,8 +118,8 @@ class Staging:
 
 
 class Input:
-    """The layer to work on: layout, cell, layer, its merged region and polygons, the out dir.
-    The batch builds it from its arguments (from_args), the editor from the current view."""
+    """The layer to work on: layout, cell, layer, its region and polygons (as drawn: the core
+    merges them), the out dir. The batch builds it from its arguments (from_args), the editor from the current view."""
     def __init__(self, ly, cell, index, path, out, tile=-1):
         self.ly, self.cell, self.index = ly, cell, index
         self.tile = tile  # the builder's tile side in DBU, 0 one tile, -1 automatic
@@ -192,7 +192,7 @@ def write_voronoi(inp, diagram):
         drawn = output.add_layers(res, top, diagram, inp.layer, inp.datatype, direct=True)
         output.save(res, inp.file("voronoi.oas"))
     s = output.summary(diagram, inp.dbu, input=inp.path, cell=inp.cell.name, layer=inp.name,
-                       polygons=len(inp.polygons), drawn=drawn)
+                       polygons=diagram.polygons, drawn=drawn)
     s["seconds"].update(read=inp.t_read, write=time.perf_counter() - t0)
     return s
 
@@ -233,7 +233,7 @@ def write_gauges(inp, result, gauges, args, window=None):
         gauge_output.add_layer(res, top, gauges, inp.layer, inp.datatype, direct=True)
         output.save(res, inp.file("gauges.oas"))
     s = gauge_output.summary(result, inp.dbu)
-    s.update(input=inp.path, cell=inp.cell.name, layer=inp.name, polygons=len(inp.polygons),
+    s.update(input=inp.path, cell=inp.cell.name, layer=inp.name, polygons=result.diagram["polygons"],
              dbu=round(inp.dbu, 12), written=len(gauges), report_items=in_report, report_max_per_type=cap)
     if window is not None:
         s["window_um"] = [round(v * inp.dbu, 9) for v in window]
@@ -500,7 +500,7 @@ def flow(inp, args, progress=None):
     line = ("flow on %s %s: %d polygons; diagram %d pieces, checked; gauges %d (internal %d, external %d, "
             "sandwich %d, comb %d, T %d); markers covered %d of %d (mode %s %s, %d windows); patterns: "
             "calibration %d, verification %d; outputs in %s"
-            % (os.path.basename(inp.path) or inp.cell.name, inp.name, len(inp.polygons), sv["pieces"], sg["gauges"],
+            % (os.path.basename(inp.path) or inp.cell.name, inp.name, sv["polygons"], sv["pieces"], sg["gauges"],
                c["internal"], c["external"], c["sandwich"], c["comb"], c["T"], sel.chosen.covered,
                len(sel.markers.boxes), sel.chosen.mode, row["W_s"], len(sel.chosen.windows),
                ss["counts"]["calibration"], ss["counts"]["verification"], os.path.abspath(inp.dir)))

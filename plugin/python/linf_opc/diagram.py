@@ -28,6 +28,7 @@ class Diagram:
         self.n_pieces = raw["pieces"] if self.pieces is None else len(self.pieces)
         self.drawn = raw.get("drawn")  # pieces per kind in the GDSII file
         self.sites = raw["sites"]
+        self.polygons = raw["polygons"]  # after merging
         self.clip = raw["clip"]
         self.check = raw["check"]
         self.tiles = raw["tiles"]

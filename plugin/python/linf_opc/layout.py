@@ -14,15 +14,18 @@ def parse_layer(text):
 
 
 def region_of(cell, layer_index):
-    """The layer's shapes in `cell` and below, flattened and merged (overlaps and touches joined)."""
+    """The layer's shapes in `cell` and below, flattened, as drawn: not merged. Merged semantics
+    (booleans and checks see overlaps and touches joined); the core merges the polygons itself,
+    so a merged copy here would only cost memory (on a layer of millions of shapes KLayout's
+    merge holds about twice the layer while it runs)."""
     region = pya.Region(cell.begin_shapes_rec(layer_index))
     region.merged_semantics = True
-    return region.merged()
+    return region
 
 
 def polygons_of(region):
     """The core's input, a polygons.Polygons (flat arrays; iterating gives (outer, [holes]) with
-    rings as [(x, y)] in integer DBU)."""
+    rings as [(x, y)] in integer DBU): the region's polygons as they are (each(), not merged)."""
     out = Polygons()
     for poly in region.each():
         out.add(((p.x, p.y) for p in poly.each_point_hull()),

@@ -81,13 +81,14 @@ def _tags(inner):
 def merge(first, second, out, generator):
     """Writes `out`: the report database `first` followed by `second`'s contents (paths), with
     `generator`."""
-    with open(second, "rb") as f:
-        _, b = _blocks(f)
-        b_items = f.read()
-    if not b_items.endswith(_TAIL):
-        raise ValueError("not a report database as KLayout saves it: %s" % second)
-    b_items = b_items[:-len(_TAIL)]
-    with open(first, "rb") as f, open(out, "wb") as o:
+    with open(second, "rb") as g:
+        _, b = _blocks(g)
+        b_start = g.tell()
+        b_end = g.seek(0, 2) - len(_TAIL)
+        g.seek(b_end)
+        if b_end < b_start or g.read() != _TAIL:
+            raise ValueError("not a report database as KLayout saves it: %s" % second)
+    with open(first, "rb") as f, open(second, "rb") as g, open(out, "wb") as o:
         head, a = _blocks(f)
         start = f.tell()
         first_item = b""
@@ -112,11 +113,15 @@ def merge(first, second, out, generator):
         o.write(b" <tags>\n%s </tags>\n" % b"".join(e for _, e in tags))
         o.write(b" <categories>\n%s%s </categories>\n" % (a["categories"], b["categories"]))
         o.write(b" <cells>\n%s </cells>\n <items>\n" % a["cells"])
-        f.seek(start)
-        left = size - len(_TAIL) - start
-        while left > 0:  # the first's items, as they are
-            chunk = f.read(min(left, 1 << 22))
-            o.write(chunk)
-            left -= len(chunk)
-        o.write(b_items)
+        _copy(f, start, size - len(_TAIL), o)  # the first's items, as they are
+        _copy(g, b_start, b_end, o)  # then the second's (both can be hundreds of MB)
         o.write(_TAIL)
+
+
+def _copy(f, start, end, o):
+    f.seek(start)
+    left = end - start
+    while left > 0:
+        chunk = f.read(min(left, 1 << 22))
+        o.write(chunk)
+        left -= len(chunk)
