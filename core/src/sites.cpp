@@ -1,6 +1,9 @@
 #include "linf/sites.hpp"
 
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
 #include <boost/polygon/polygon.hpp>
+#include <algorithm>
 #include <map>
 #include <stdexcept>
 
@@ -75,13 +78,13 @@ Ring from_boost(const BSimple& s) {
   return r;
 }
 
-}  // namespace
-
-std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in) {
+// One Boost.Polygon scan over the polygons `ids` of `in`, appended to `out`.
+void merge_group(const std::vector<Polygon>& in, const std::vector<std::int32_t>& ids, std::vector<Polygon>& out) {
   // Everything goes into one set and is merged by a single scan at get(): a union per shape
   // would rescan the growing set each time (minutes on a layer of 100K shapes).
   bp::polygon_set_data<int> set;
-  for (const Polygon& p : in) {
+  for (const std::int32_t i : ids) {
+    const Polygon& p = in[std::size_t(i)];
     BPolygon b;
     const BSimple outer = to_boost(p.outer);
     b.set(outer.begin(), outer.end());
@@ -92,7 +95,6 @@ std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in) {
   }
   std::vector<BPolygon> merged;
   set.get(merged);
-  std::vector<Polygon> out;
   for (const BPolygon& m : merged) {
     Polygon p;
     p.outer = clean_ring(from_boost(BSimple(m.begin(), m.end())));
@@ -104,6 +106,72 @@ std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in) {
     }
     out.push_back(std::move(p));
   }
+}
+
+// Groups of whole clusters of polygons whose boxes overlap or touch (only those can merge),
+// each group about `size` polygons: merged group by group, a layer of millions of shapes needs
+// the scan's memory for one group at a time (one scan over five million wires held about 7 GB).
+std::vector<std::vector<std::int32_t>> merge_groups(const std::vector<Polygon>& in, std::size_t size) {
+  namespace bg = boost::geometry;
+  namespace bgi = boost::geometry::index;
+  using IPt = bg::model::point<std::int32_t, 2, bg::cs::cartesian>;
+  using IBox = bg::model::box<IPt>;
+  using Entry = std::pair<IBox, std::int32_t>;
+  const std::size_t n = in.size();
+  std::vector<Entry> boxes;
+  boxes.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    Coord x1 = kLimit, y1 = kLimit, x2 = -kLimit, y2 = -kLimit;
+    for (const Point& p : in[i].outer) {
+      if (p.x <= -kLimit || p.x >= kLimit || p.y <= -kLimit || p.y >= kLimit)
+        throw std::invalid_argument("coordinate outside +-2^30 database units");
+      x1 = std::min(x1, p.x), y1 = std::min(y1, p.y), x2 = std::max(x2, p.x), y2 = std::max(y2, p.y);
+    }
+    if (in[i].outer.empty()) x1 = y1 = x2 = y2 = 0;
+    boxes.push_back({IBox(IPt(std::int32_t(x1), std::int32_t(y1)), IPt(std::int32_t(x2), std::int32_t(y2))),
+                     std::int32_t(i)});
+  }
+  std::vector<std::int32_t> parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = std::int32_t(i);
+  auto root = [&](std::int32_t x) {
+    while (parent[std::size_t(x)] != x) x = parent[std::size_t(x)] = parent[std::size_t(parent[std::size_t(x)])];
+    return x;
+  };
+  {
+    const bgi::rtree<Entry, bgi::rstar<16>> tree(boxes.begin(), boxes.end());
+    std::vector<Entry> hit;
+    for (const Entry& e : boxes) {
+      hit.clear();
+      tree.query(bgi::intersects(e.first), std::back_inserter(hit));  // closed boxes: touching counts
+      for (const Entry& h : hit) {
+        const std::int32_t a = root(e.second), b = root(h.second);
+        if (a != b) parent[std::size_t(std::max(a, b))] = std::min(a, b);
+      }
+    }
+  }
+  // Clusters in the order of their first polygon, packed into groups.
+  std::vector<std::vector<std::int32_t>> cluster_of(n);
+  std::vector<std::int32_t> order;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t r = root(std::int32_t(i));
+    if (cluster_of[std::size_t(r)].empty()) order.push_back(r);
+    cluster_of[std::size_t(r)].push_back(std::int32_t(i));
+  }
+  std::vector<std::vector<std::int32_t>> groups(1);
+  for (const std::int32_t r : order) {
+    if (!groups.back().empty() && groups.back().size() + cluster_of[std::size_t(r)].size() > size) groups.emplace_back();
+    auto& g = groups.back();
+    g.insert(g.end(), cluster_of[std::size_t(r)].begin(), cluster_of[std::size_t(r)].end());
+    std::vector<std::int32_t>().swap(cluster_of[std::size_t(r)]);
+  }
+  return groups;
+}
+
+}  // namespace
+
+std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in, std::size_t group) {
+  std::vector<Polygon> out;
+  for (const std::vector<std::int32_t>& g : merge_groups(in, group)) merge_group(in, g, out);
   // Boost's output order depends on its scanline; sort for reproducible site numbering.
   std::sort(out.begin(), out.end(), [](const Polygon& a, const Polygon& b) {
     return std::min_element(a.outer.begin(), a.outer.end())[0] < std::min_element(b.outer.begin(), b.outer.end())[0];

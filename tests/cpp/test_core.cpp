@@ -30,6 +30,34 @@ TEST(Merge, OverlapAndTouchBecomeOne) {
   EXPECT_EQ(m[0].outer.size(), 12u);  // collinear vertices removed
 }
 
+// The layer is merged in groups of whole clusters of touching boxes: any group size gives the
+// same polygons (rings, vertex order, order) as one scan over everything.
+TEST(Merge, GroupsGiveTheSameAsOneScan) {
+  std::vector<Polygon> in;
+  std::uint64_t r = 12345;
+  auto next = [&](int m) { r = r * 6364136223846793005ULL + 1442695040888963407ULL; return Coord((r >> 33) % std::uint64_t(m)); };
+  for (int i = 0; i < 3000; ++i) {
+    const Coord x = next(20000), y = next(20000), w = 5 + next(300), h = 5 + next(300);
+    in.push_back(box(x, y, x + w, y + h));
+  }
+  Polygon ring = box(30000, 0, 31000, 1000);  // a hole, and a box inside it touching nothing
+  ring.holes.push_back({{30100, 100}, {30100, 900}, {30900, 900}, {30900, 100}});
+  in.push_back(ring);
+  in.push_back(box(30400, 400, 30600, 600));
+  in.push_back({{{40000, 0}, {41000, 0}, {40500, 700}}, {}});  // slanted edges crossing a box
+  in.push_back(box(40400, 300, 40600, 900));
+  const auto whole = merge_polygons(in, in.size());
+  ASSERT_LT(whole.size(), in.size());  // some merged
+  for (std::size_t group : {std::size_t(1), std::size_t(7), std::size_t(500)}) {
+    const auto parts = merge_polygons(in, group);
+    ASSERT_EQ(parts.size(), whole.size()) << group;
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+      ASSERT_EQ(parts[i].outer, whole[i].outer) << group << " polygon " << i;
+      ASSERT_EQ(parts[i].holes, whole[i].holes) << group << " polygon " << i;
+    }
+  }
+}
+
 TEST(Merge, HoleKeptAndOriented) {
   Polygon p = box(0, 0, 100, 100);
   p.holes.push_back({{10, 10}, {10, 90}, {90, 90}, {90, 10}});

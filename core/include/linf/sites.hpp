@@ -1,5 +1,6 @@
 // From layout data to sites.
 #pragma once
+#include <cstddef>
 #include <vector>
 
 #include "linf/site.hpp"
@@ -8,8 +9,10 @@ namespace linf {
 
 // Merges overlapping and touching polygons (any angle; Boost.Polygon, integer coordinates),
 // removes repeated and collinear vertices, and orients rings with the interior on the left.
-// Coordinates must lie within +-2^30 so that intersections stay representable.
-std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in);
+// Coordinates must lie within +-2^30 so that intersections stay representable. Polygons whose
+// boxes overlap or touch are merged together, about `group` of them in one scan (memory), and
+// the result does not depend on `group`.
+std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in, std::size_t group = std::size_t(1) << 16);
 
 // Sites of already merged polygons: every vertex a point site, every edge an open segment site.
 Sites sites_of_polygons(const std::vector<Polygon>& merged);
