@@ -15,6 +15,7 @@
 #include <tuple>
 #include <pybind11/stl.h>
 
+#include "linf/clips.hpp"
 #include "linf/csv.hpp"
 #include "linf/diagram.hpp"
 #include "linf/engine.hpp"
@@ -507,6 +508,58 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "as in voronoi_polygons, and gds_cell. gauges_csv: also write the gauges there (gauges.csv, micrometres).\n"
       "columns: write the two column blocks into this file (reals for every gauge, then ints) instead of bytes:\n"
       "'gauges' is then {'count', 'file', 'reals': None, 'ints': None, 'paths'}, for the caller to map.");
+
+  m.def(
+      "write_clip_library",
+      [](const std::string& path, double dbu, const py::tuple& polygons, int layer, int datatype, int gauges,
+         int windows, int markers, const std::vector<std::string>& names, py::buffer window_box, py::buffer lines,
+         py::buffer at, const std::vector<std::string>& labels, py::buffer marker_counts, py::buffer marker_boxes) {
+        if (py::len(polygons) != 2) throw py::value_error("polygons must be (points, rings) flat arrays");
+        const py::buffer_info pi = py::buffer(polygons[0]).request(), ri = py::buffer(polygons[1]).request();
+        FlatPolygons flat{int64s_of(pi, "points"), std::size_t(pi.shape[0]) / 2, int64s_of(ri, "rings"),
+                          std::size_t(ri.shape[0])};
+        const py::buffer_info wi = window_box.request(), li = lines.request(), ai = at.request(),
+                              ci = marker_counts.request();
+        const std::int64_t* w = int64s_of(wi, "windows");
+        const std::int64_t* ln = int64s_of(li, "lines");
+        const std::int64_t* a = int64s_of(ai, "at");
+        const std::int64_t* mc = int64s_of(ci, "marker_counts");
+        const Doubles mb = doubles_of(marker_boxes, 4, "markers");
+        const std::size_t n = names.size();
+        if (std::size_t(wi.shape[0]) != 4 * n || std::size_t(li.shape[0]) != 4 * n || std::size_t(ai.shape[0]) != 2 * n ||
+            labels.size() != n || std::size_t(ci.shape[0]) != n)
+          throw py::value_error("one name, window, line, label position, label and marker count a clip");
+        std::vector<Clip> clips(n);
+        std::size_t m = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          Clip& c = clips[i];
+          c.name = names[i];
+          c.label = labels[i];
+          for (int k = 0; k < 4; ++k) c.window[k] = w[4 * i + k], c.line[k] = ln[4 * i + k];
+          c.at = {a[2 * i], a[2 * i + 1]};
+          for (std::int64_t j = 0; j < mc[i]; ++j, ++m) {
+            if (4 * m + 3 >= mb.size()) throw py::value_error("fewer marker boxes than the counts say");
+            // As KLayout rounds a box given in micrometres (half away from zero).
+            std::array<std::int64_t, 4> box{};
+            for (int k = 0; k < 4; ++k) box[k] = std::llround(mb[4 * m + k] * dbu / dbu);
+            c.markers.push_back(box);
+          }
+        }
+        if (4 * m != mb.size()) throw py::value_error("more marker boxes than the counts say");
+        ClipLayers l;
+        l.layer = layer, l.datatype = datatype, l.gauges = gauges, l.windows = windows, l.markers = markers;
+        py::gil_scoped_release unlocked;
+        return write_clip_library(path, dbu, flat, l, clips);
+      },
+      py::arg("path"), py::arg("dbu"), py::arg("polygons"), py::arg("layer"), py::arg("datatype"), py::arg("gauges"),
+      py::arg("windows"), py::arg("markers"), py::arg("names"), py::arg("window_boxes"), py::arg("lines"),
+      py::arg("at"), py::arg("labels"), py::arg("marker_counts"), py::arg("marker_boxes"),
+      "Writes a clip library as OASIS, one cell a clip: the layer's polygons (flat (points, rings) arrays, as\n"
+      "drawn) merged and cut to the clip's window on layer/datatype; its measurement line (a zero-width path) and\n"
+      "label (a text) on datatype `gauges`, the window outline on `windows`, its markers on `markers`. names,\n"
+      "labels: one a clip; window_boxes, lines: array('q') x1, y1, x2, y2 a clip (DBU); at: array('q') x, y a\n"
+      "clip (the label); marker_counts: array('q') a clip; marker_boxes: array('d') x1, y1, x2, y2 (DBU), the\n"
+      "clips' markers in turn. Returns the number of shapes written.");
 
   m.def(
       "oasis_from_drawing",

@@ -163,6 +163,11 @@ void OasisWriter::text(int layer, int datatype, std::int64_t x, std::int64_t y, 
   s_->flush_if_full();
 }
 
+void OasisWriter::cell(const std::string& name) {
+  s_->cell = n_string(name);
+  s_->in_cell = false;
+}
+
 void OasisWriter::close() {
   s_->open_cell();  // an empty cell is still the layout's top cell
   s_->pack();
@@ -248,6 +253,8 @@ class GdsReader {
 };
 
 }  // namespace
+
+std::vector<Ring> outlines(const Polygon& p) { return without_holes(p); }
 
 std::size_t oasis_from_drawing(const std::string& drawing, const std::vector<Polygon>& input, int layer,
                                int datatype, const std::vector<LayerName>& names, double dbu,

@@ -101,6 +101,15 @@ for which, prefix in (("calibration", "CAL"), ("verification", "VER")):
         clip = pya.Region(c.shapes(li)) if li is not None else pya.Region()
         xor = clip ^ (layer & pya.Region(window))
         expect(not window.empty() and xor.is_empty(), "clip %s equals the layer in its window" % c.name)
+        # The gauge: one measurement line inside the window and its label naming the rank.
+        lg, lm = lib.find_layer(L, 210), lib.find_layer(L, 230)
+        paths = [x for x in c.shapes(lg).each() if x.is_path()] if lg is not None else []
+        texts = [x.text_string for x in c.shapes(lg).each() if x.is_text()] if lg is not None else []
+        expect(len(paths) == 1 and window.enlarged(1, 1).contains(paths[0].bbox().center()),
+               "clip %s: one measurement line, in its window" % c.name)
+        expect(len(texts) == 1 and texts[0].startswith("#%d " % int(parts[1][1:])), "clip %s: its label" % c.name)
+        for m in (c.shapes(lm).each() if lm is not None else []):
+            expect(m.bbox().touches(window), "clip %s: its markers meet the window" % c.name)
         checked += 1
     expect(ranks == set(sets[which]), "%s.oas holds one cell per %s pattern" % (which, which))
 

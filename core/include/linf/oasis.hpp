@@ -29,6 +29,9 @@ class OasisWriter {
   // A two-point path of width zero with flush ends.
   void path(int layer, int datatype, std::int64_t x1, std::int64_t y1, std::int64_t x2, std::int64_t y2);
   void text(int layer, int datatype, std::int64_t x, std::int64_t y, const std::string& s);
+  // The shapes from here on go into a new cell of this name (a library of clips); a cell that
+  // got no shape is not written, but for the last.
+  void cell(const std::string& name);
   void close();  // ends the file; throws on a write error
 
  private:
@@ -40,6 +43,9 @@ struct LayerName {
   int layer = 0, datatype = 0;
   std::string name;
 };
+
+// A polygon as outlines without holes (each hole joined to its outline by a cut line).
+std::vector<Ring> outlines(const Polygon& p);
 
 // The input polygons on (layer, datatype), then the drawing's paths and texts, into `path`.
 // Returns the number of shapes written. Throws std::runtime_error on an unreadable drawing.

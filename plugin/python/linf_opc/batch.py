@@ -446,7 +446,7 @@ def write_split(inp, split):
     names = {}
     for which in split_stage.SETS:
         members = split.members(which)
-        names[which] = clips.write_library(inp.file("%s.oas" % which), which, members, inp.cell, inp.index, inp.layer,
+        names[which] = clips.write_library(inp.file("%s.oas" % which), which, members, inp.polygons, inp.layer,
                                            inp.datatype, inp.dbu)
         gauge_output.write_csv([p.gauge for p in members], inp.file("%s_gauges.csv" % which), inp.dbu)
     s = split.summary()
