@@ -57,8 +57,8 @@ with tempfile.TemporaryDirectory() as tmp:
         cgal_notes.append("order %d: %.2f s" % (seed, t_cgal))
         break
 
-print("input: %s %d/%d cell %s: %d merged polygons, %d sites, %d pieces, check %s"
-      % (os.path.basename(path), L, D, cell.name, len(polygons), d.sites, len(d.pieces),
+print("input: %s %d/%d cell %s: %d shapes, %d merged polygons, %d sites, %d pieces, check %s"
+      % (os.path.basename(path), L, D, cell.name, len(polygons), d.polygons, d.sites, len(d.pieces),
          "ok" if d.check["ok"] else "FAILED"))
 print("whole diagram: %.2f s (read %.2f, merge %.2f, build %.2f, check %.2f, write csv %.2f)"
       % (whole, t_read, d.seconds["merge"], d.seconds["build"], d.seconds["check"], t_write))

@@ -128,8 +128,9 @@ t0 = time.perf_counter()
 sp = split.stratified(split.patterns_of(st.runs[("A", 7)], gs, ms))
 t["split"] = time.perf_counter() - t0
 mark("split")
-out = {"input": os.path.basename(g["input"]), "polygons": len(polygons), "sites": raw["diagram"]["sites"],
-       "segments": sum(len(o) + sum(len(h) for h in hs) for o, hs in polygons), "gauges": len(gs),
+out = {"input": os.path.basename(g["input"]), "polygons": raw["diagram"]["polygons"], "shapes": len(polygons),
+       "sites": raw["diagram"]["sites"],
+       "segments": raw["diagram"]["sites"] // 2, "gauges": len(gs),  # a segment site and a point site a vertex
        "markers": len(ms), "patterns": len(sp.patterns), "seconds": t, "threads": threads,
        "tiles": raw["diagram"]["tiles"]}
 if g.get("drc") == "1":
