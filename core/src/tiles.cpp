@@ -57,21 +57,23 @@ class SiteGrid {
   }
 
   // Sites whose bounding box comes within L-inf distance r of b (a superset of the sites
-  // within r of b), ascending, each once. (A site in several buckets is found several times
-  // and kept once by the sort: no scratch array of one entry a site, which on a full layer
-  // was a few hundred MB for each thread.)
-  void near(const Box& b, double r, std::vector<int>& out) const {
+  // within r of b), ascending, each once. `seen` is the caller's scratch, one entry a site.
+  void near(const Box& b, double r, std::vector<int>& out, std::vector<std::uint32_t>& seen,
+            std::uint32_t& stamp) const {
     out.clear();
+    if (seen.size() != s_.size()) seen.assign(s_.size(), 0), stamp = 0;
+    if (++stamp == 0) std::fill(seen.begin(), seen.end(), 0), stamp = 1;
     std::size_t i1, i2, j1, j2;
     range(b, r, i1, i2, j1, j2);
     for (std::size_t j = j1; j <= j2; ++j)
       for (std::size_t k = start_[j * n_ + i1]; k < start_[j * n_ + i2 + 1]; ++k) {
         const int t = ids_[k];
+        if (seen[t] == stamp) continue;
+        seen[t] = stamp;
         const Box c = box_of(s_[t]);
         if (std::max({c.x1 - b.x2, b.x1 - c.x2, c.y1 - b.y2, b.y1 - c.y2}) <= r) out.push_back(t);
       }
     std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
   }
 
  private:
@@ -104,11 +106,11 @@ class SiteGrid {
 // grows to U (+ the rounding allowance) until it covers it. The site attaining U is then
 // found too, so the builder's first pruning gives what it gives with every site.
 void gather(const SiteGrid& grid, const SiteList& sites, const Box& b, const Box& root, double tau,
-            std::vector<int>& out) {
+            std::vector<int>& out, std::vector<std::uint32_t>& seen, std::uint32_t& stamp) {
   double r = std::max(b.x2 - b.x1, b.y2 - b.y1);
   const double span = std::max(root.x2 - root.x1, root.y2 - root.y1);
   for (;;) {
-    grid.near(b, r, out);
+    grid.near(b, r, out, seen, stamp);
     if (out.empty()) {
       if (r > 2 * span) return;  // no sites at all
       r *= 2;
@@ -148,6 +150,9 @@ void build_tiled(const SiteList& sites, const Box& root, const BuildOptions& opt
   const SiteGrid grid(sites, root, T + 1);  // buckets finer than tasks: tighter halos
 
   std::vector<std::vector<int>> halo(per * per);
+  struct Scratch { std::vector<std::uint32_t> seen; std::uint32_t stamp = 0; };
+  std::vector<Scratch> scratch(worker_count(per * per, opt.threads));
+  std::vector<int> local(sites.size(), -1);  // global id -> id in the current tile
   // A tile's end — its pieces collected and joined, then handed to the sink — runs on a thread
   // of its own while the next tile is gathered and built: done in line, it left all cores but
   // one idle. Tiles still reach the sink one at a time and in order. The workers' raw pieces
@@ -171,17 +176,18 @@ void build_tiled(const SiteList& sites, const Box& root, const BuildOptions& opt
     for (std::size_t tj = 0; tj < ntiles; ++tj)
       for (std::size_t ti = 0; ti < ntiles; ++ti) {
         auto task_of = [&](std::size_t k) { return (tj * per + k / per) * nt + ti * per + k % per; };
-        parallel_for(per * per, opt.threads, [&](unsigned, std::size_t k) {
-          gather(grid, sites, tasks[task_of(k)], root, tau, halo[k]);
+        parallel_for(per * per, opt.threads, [&](unsigned w, std::size_t k) {
+          gather(grid, sites, tasks[task_of(k)], root, tau, halo[k], scratch[w].seen, scratch[w].stamp);
         });
-        // The tile's sites, ascending, and each halo in their local ids (by search, not a
-        // table of one entry a site of the layer).
         std::vector<int> ids;
-        for (const auto& h : halo) ids.insert(ids.end(), h.begin(), h.end());
-        std::sort(ids.begin(), ids.end());
-        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
         for (auto& h : halo)
-          for (int& t : h) t = int(std::lower_bound(ids.begin(), ids.end(), t) - ids.begin());
+          for (int t : h)
+            if (local[t] < 0) local[t] = 0, ids.push_back(t);
+        std::sort(ids.begin(), ids.end());
+        for (std::size_t i = 0; i < ids.size(); ++i) local[ids[i]] = int(i);
+        for (auto& h : halo)
+          for (int& t : h) t = local[t];
+        for (int t : ids) local[t] = -1;
         if (ids.size() < 2) continue;
         auto model = std::make_unique<const Model>(sites, std::move(ids), opt, tau);
         std::vector<Builder> workers(nw, Builder(*model, root, nullptr));
