@@ -13,14 +13,20 @@ def parse_layer(text):
         raise ValueError("layer must be given as L/D, e.g. 11/0, not %r" % (text,))
 
 
+# Up to this many shapes KLayout merges the layer before the core sees it: its merge is several
+# times faster than the core's (the SRAM's 113,019 shapes: about 0.1 s against 0.7 s), but
+# holds about twice the layer while it runs, so larger layers reach the core as drawn and the
+# core merges them in groups (it merges what it gets either way; the polygons are the same).
+MERGE_IN_KLAYOUT_MAX = 200000
+
+
 def region_of(cell, layer_index):
-    """The layer's shapes in `cell` and below, flattened, as drawn: not merged. Merged semantics
-    (booleans and checks see overlaps and touches joined); the core merges the polygons itself,
-    so a merged copy here would only cost memory (on a layer of millions of shapes KLayout's
-    merge holds about twice the layer while it runs)."""
+    """The layer's shapes in `cell` and below, flattened, with merged semantics (booleans and
+    checks see overlaps and touches joined); merged by KLayout up to MERGE_IN_KLAYOUT_MAX
+    shapes, else as drawn."""
     region = pya.Region(cell.begin_shapes_rec(layer_index))
     region.merged_semantics = True
-    return region
+    return region.merged() if region.count() <= MERGE_IN_KLAYOUT_MAX else region
 
 
 def polygons_of(region):
