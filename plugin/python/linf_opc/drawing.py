@@ -6,9 +6,9 @@ import os
 import tempfile
 
 
-def temporary():
-    """A fresh temporary file name for the core's GDSII output."""
-    fd, path = tempfile.mkstemp(prefix="linf_opc-drawing-", suffix=".gds")
+def temporary(prefix="linf_opc-drawing-", suffix=".gds"):
+    """A fresh temporary file for the core to write into (its GDSII drawings by default)."""
+    fd, path = tempfile.mkstemp(prefix=prefix, suffix=suffix)
     os.close(fd)
     return path
 

@@ -7,7 +7,6 @@ The rules where the thesis leaves a choice open are in the README, "Gauges".
 """
 import mmap
 import os
-import tempfile
 import time
 from array import array
 from collections import namedtuple
@@ -49,7 +48,7 @@ class GaugeTable(Sequence):
                     raise ValueError("the gauge columns file %s holds %d bytes, not %d" % (path, size, 132 * n))
                 self._map = mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) if n else b""
         finally:
-            remove_columns_file(path)
+            drawing.remove(path)
         whole = memoryview(self._map)
         return whole[:80 * n], whole[80 * n:]
 
@@ -141,16 +140,7 @@ class Gauges:
 
 def columns_file():
     """A fresh temporary file for the core to write the gauge columns into (GaugeTable maps it)."""
-    fd, path = tempfile.mkstemp(prefix="linf_opc-gauges-", suffix=".columns")
-    os.close(fd)
-    return path
-
-
-def remove_columns_file(path):
-    try:
-        os.remove(path)
-    except OSError:
-        pass
+    return drawing.temporary("linf_opc-gauges-", ".columns")
 
 
 def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, draw_layer=None,
@@ -172,7 +162,7 @@ def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, d
                                              gauges_csv=gauges_csv or "", columns=columns),
             draw_layer is not None)
     except BaseException:
-        remove_columns_file(columns)
+        drawing.remove(columns)
         raise
     out = Gauges(raw, time.perf_counter() - t0)
     out.csv_path = gauges_csv  # where the core already wrote gauges.csv, if it did
