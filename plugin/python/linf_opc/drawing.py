@@ -1,7 +1,8 @@
 """Temporary GDSII files for the core's drawings (no KLayout here: the stages that ask for
 one run without it). output.copy_drawing puts their shapes into a layout: KLayout reads the
 file and copies its shapes in C++, several times faster than inserting them one by one from
-Python (11-14 us a shape), which on a full layer would take minutes."""
+Python (11-14 us a shape), which on a full layer would take minutes. The gauge columns' file
+(gauges.columns_file) is made and removed here too."""
 import os
 import tempfile
 
