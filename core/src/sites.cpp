@@ -18,6 +18,13 @@ using BSimple = bp::polygon_data<int>;
 
 constexpr Coord kLimit = Coord(1) << 30;
 
+// Every input point passes here once: intersections must stay representable, and the merge's
+// and the checker's boxes are 32-bit.
+void check_range(const Point& p) {
+  if (p.x <= -kLimit || p.x >= kLimit || p.y <= -kLimit || p.y >= kLimit)
+    throw std::invalid_argument("coordinate outside +-2^30 database units");
+}
+
 __int128 cross(const Point& o, const Point& a, const Point& b) {
   return __int128(a.x - o.x) * (b.y - o.y) - __int128(a.y - o.y) * (b.x - o.x);
 }
@@ -62,11 +69,7 @@ Ring oriented(Ring r, bool ccw) {
 BSimple to_boost(const Ring& r) {
   std::vector<BPoint> pts;
   pts.reserve(r.size());
-  for (const Point& p : r) {
-    if (p.x <= -kLimit || p.x >= kLimit || p.y <= -kLimit || p.y >= kLimit)
-      throw std::invalid_argument("coordinate outside +-2^30 database units");
-    pts.emplace_back(int(p.x), int(p.y));
-  }
+  for (const Point& p : r) pts.emplace_back(int(p.x), int(p.y));  // checked in merge_groups
   BSimple s;
   s.set(pts.begin(), pts.end());
   return s;
@@ -123,10 +126,11 @@ std::vector<std::vector<std::int32_t>> merge_groups(const std::vector<Polygon>& 
   for (std::size_t i = 0; i < n; ++i) {
     Coord x1 = kLimit, y1 = kLimit, x2 = -kLimit, y2 = -kLimit;
     for (const Point& p : in[i].outer) {
-      if (p.x <= -kLimit || p.x >= kLimit || p.y <= -kLimit || p.y >= kLimit)
-        throw std::invalid_argument("coordinate outside +-2^30 database units");
+      check_range(p);
       x1 = std::min(x1, p.x), y1 = std::min(y1, p.y), x2 = std::max(x2, p.x), y2 = std::max(y2, p.y);
     }
+    for (const Ring& h : in[i].holes)
+      for (const Point& p : h) check_range(p);
     if (in[i].outer.empty()) x1 = y1 = x2 = y2 = 0;
     boxes.push_back({IBox(IPt(std::int32_t(x1), std::int32_t(y1)), IPt(std::int32_t(x2), std::int32_t(y2))),
                      std::int32_t(i)});
@@ -214,8 +218,7 @@ Sites sites_of_plain(const std::vector<Point>& points, const std::vector<Segment
   Sites s;
   std::map<Point, std::int32_t> at;
   auto point_site = [&](const Point& p, std::int32_t shape) {
-    if (p.x <= -kLimit || p.x >= kLimit || p.y <= -kLimit || p.y >= kLimit)
-      throw std::invalid_argument("coordinate outside +-2^30 database units");
+    check_range(p);
     auto it = at.find(p);
     if (it != at.end()) return it->second;
     Site v;

@@ -81,41 +81,41 @@ def _tags(inner):
 def merge(first, second, out, generator):
     """Writes `out`: the report database `first` followed by `second`'s contents (paths), with
     `generator`."""
-    with open(second, "rb") as g:
+    with open(first, "rb") as f, open(second, "rb") as g:
         _, b = _blocks(g)
         b_start = g.tell()
         b_end = g.seek(0, 2) - len(_TAIL)
         g.seek(b_end)
         if b_end < b_start or g.read() != _TAIL:
             raise ValueError("not a report database as KLayout saves it: %s" % second)
-    with open(first, "rb") as f, open(second, "rb") as g, open(out, "wb") as o:
-        head, a = _blocks(f)
-        start = f.tell()
-        first_item = b""
-        for line in f:
-            first_item += line
-            if line in (b"  </item>\n", _ITEMS_END):
-                break
-        size = f.seek(0, 2)
-        f.seek(size - len(_TAIL))
-        if f.read() != _TAIL:
-            raise ValueError("not a report database as KLayout saves it: %s" % first)
-        head = re.sub(rb" <generator>[^<]*</generator>\n",
-                      lambda m: b" <generator>%s</generator>\n" % generator.encode(), head, 1)
-        tags = _tags(a["tags"])
-        names = [n for n, _ in tags]
-        for n in _VALUE_TAG.findall(first_item):
-            if n not in names:
-                names.append(n)
-                tags.append((n, tag(n.decode()).encode()))
-        tags += [(n, e) for n, e in _tags(b["tags"]) if n not in names]
-        o.write(head)
-        o.write(b" <tags>\n%s </tags>\n" % b"".join(e for _, e in tags))
-        o.write(b" <categories>\n%s%s </categories>\n" % (a["categories"], b["categories"]))
-        o.write(b" <cells>\n%s </cells>\n <items>\n" % a["cells"])
-        _copy(f, start, size - len(_TAIL), o)  # the first's items, as they are
-        _copy(g, b_start, b_end, o)  # then the second's (both can be hundreds of MB)
-        o.write(_TAIL)
+        with open(out, "wb") as o:
+            head, a = _blocks(f)
+            start = f.tell()
+            first_item = b""
+            for line in f:
+                first_item += line
+                if line in (b"  </item>\n", _ITEMS_END):
+                    break
+            size = f.seek(0, 2)
+            f.seek(size - len(_TAIL))
+            if f.read() != _TAIL:
+                raise ValueError("not a report database as KLayout saves it: %s" % first)
+            head = re.sub(rb" <generator>[^<]*</generator>\n",
+                          lambda m: b" <generator>%s</generator>\n" % generator.encode(), head, 1)
+            tags = _tags(a["tags"])
+            names = [n for n, _ in tags]
+            for n in _VALUE_TAG.findall(first_item):
+                if n not in names:
+                    names.append(n)
+                    tags.append((n, tag(n.decode()).encode()))
+            tags += [(n, e) for n, e in _tags(b["tags"]) if n not in names]
+            o.write(head)
+            o.write(b" <tags>\n%s </tags>\n" % b"".join(e for _, e in tags))
+            o.write(b" <categories>\n%s%s </categories>\n" % (a["categories"], b["categories"]))
+            o.write(b" <cells>\n%s </cells>\n <items>\n" % a["cells"])
+            _copy(f, start, size - len(_TAIL), o)  # the first's items, as they are
+            _copy(g, b_start, b_end, o)  # then the second's (both can be hundreds of MB)
+            o.write(_TAIL)
 
 
 def _copy(f, start, end, o):
