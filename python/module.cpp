@@ -50,41 +50,35 @@ const std::int64_t* int64s_of(const py::buffer_info& info, const char* name) {
   return static_cast<const std::int64_t*>(info.ptr);
 }
 
-// Polygons as [(outer, [holes])] lists, or flat (points, rings): points = array('q') of
-// x0, y0, x1, y1, ...; rings = array('q') of point counts, each outer ring followed by its
-// holes with negative counts. The flat form costs 16 bytes a point instead of ~150.
-std::vector<Polygon> polygons_of(const py::object& obj) {
-  if (py::isinstance<py::tuple>(obj) && py::len(obj) == 2 && PyObject_CheckBuffer(obj[py::int_(0)].ptr())) {
-    const py::buffer_info pi = py::buffer(obj[py::int_(0)]).request(), ri = py::buffer(obj[py::int_(1)]).request();
-    const std::int64_t* pts = int64s_of(pi, "points");
-    const std::int64_t* rings = int64s_of(ri, "rings");
-    const std::size_t np = std::size_t(pi.shape[0]) / 2, nr = std::size_t(ri.shape[0]);
-    std::vector<Polygon> in;
-    std::size_t at = 0;
-    for (std::size_t k = 0; k < nr; ++k) {
-      const std::int64_t c = rings[k];
-      const std::size_t n = std::size_t(c < 0 ? -c : c);
-      if (at + n > np) throw py::value_error("rings count more points than there are");
-      if (c < 0 && in.empty()) throw py::value_error("a hole (negative count) must follow its outer ring");
-      Ring r(n);
-      for (std::size_t i = 0; i < n; ++i, ++at) r[i] = {pts[2 * at], pts[2 * at + 1]};
-      if (c < 0) in.back().holes.push_back(std::move(r));
-      else in.push_back({std::move(r), {}});
+// The core's input polygons: flat (points, rings) arrays, points = array('q') of x0, y0, x1,
+// y1, ...; rings = array('q') of point counts, each outer ring followed by its holes with
+// negative counts, read in place (a full layer's copy would be hundreds of MB); or
+// [(outer, [holes])] lists, flattened here. Malformed arrays raise ValueError when the core
+// reads them (std::invalid_argument).
+class LayerInput {
+ public:
+  explicit LayerInput(const py::object& obj) {
+    if (py::isinstance<py::tuple>(obj) && py::len(obj) == 2 && PyObject_CheckBuffer(obj[py::int_(0)].ptr())) {
+      points_ = py::buffer(obj[py::int_(0)]).request(), rings_ = py::buffer(obj[py::int_(1)]).request();
+      view_ = {int64s_of(points_, "points"), std::size_t(points_.shape[0]) / 2, int64s_of(rings_, "rings"),
+               std::size_t(rings_.shape[0])};
+      return;
     }
-    if (at != np) throw py::value_error("points left over after the last ring");
-    return in;
+    for (auto& p : obj.cast<PyPolygons>()) {
+      Polygon q;
+      q.outer = ring_of(p.first);
+      for (auto& h : p.second) q.holes.push_back(ring_of(h));
+      owned_.add(q);
+    }
+    view_ = owned_.view();
   }
-  const auto polys = obj.cast<PyPolygons>();
-  std::vector<Polygon> in;
-  in.reserve(polys.size());
-  for (auto& p : polys) {
-    Polygon q;
-    q.outer = ring_of(p.first);
-    for (auto& h : p.second) q.holes.push_back(ring_of(h));
-    in.push_back(std::move(q));
-  }
-  return in;
-}
+  const FlatPolygons& flat() const { return view_; }
+
+ private:
+  py::buffer_info points_, rings_;  // held while the core reads them
+  PolygonArrays owned_;
+  FlatPolygons view_;
+};
 
 py::dict to_python_summary(const Diagram& d, const CheckReport& c) {
   py::dict check;
@@ -357,19 +351,19 @@ struct Files {
     if (!gds.empty()) drawn = write_pieces_gds(d, layers(), gds);
   }
   // The diagram held whole, its files written; the GIL released meanwhile.
-  Result whole(std::vector<Polygon>&& in, const DiagramOptions& o) {
+  Result whole(const FlatPolygons& in, const DiagramOptions& o) {
     py::gil_scoped_release unlocked;
-    Result r = voronoi_of_polygons(std::move(in), o);
+    Result r = voronoi_of_polygons(in, o);
     write(r.diagram);
     return r;
   }
   // The same files with the pieces streamed past (stream.hpp), never all in memory; with the
   // gauges' stretches if asked.
-  StreamResult stream(std::vector<Polygon>&& in, const DiagramOptions& o, bool stretches) {
+  StreamResult stream(const FlatPolygons& in, const DiagramOptions& o, bool stretches) {
     StreamOutputs so;
     so.csv = csv, so.dbu = dbu, so.gds = gds, so.layers = layers();
     if (stretches) so.keep = measurable_pair;
-    StreamResult r = stream_voronoi(std::move(in), o, so);
+    StreamResult r = stream_voronoi(in, o, so);
     counts = r.counts, drawn = r.drawn;
     return r;
   }
@@ -405,17 +399,17 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "voronoi_polygons",
       [](const py::object& polys, bool check, int pairs, int threads, double tile, const std::string& csv,
          double dbu, bool with_pieces, const std::string& gds, int gds_layer, const std::string& gds_cell) {
-        std::vector<Polygon> in = polygons_of(polys);
+        const LayerInput in(polys);
         Files files{csv, gds, gds_layer, dbu, gds_cell};
         py::dict d;
         if (with_pieces) {
-          Result r = files.whole(std::move(in), options(check, pairs, threads, tile));
+          Result r = files.whole(in.flat(), options(check, pairs, threads, tile));
           d = to_python(r);
         } else {
           StreamResult r;
           {
             py::gil_scoped_release unlocked;
-            r = files.stream(std::move(in), options(check, pairs, threads, tile), false);
+            r = files.stream(in.flat(), options(check, pairs, threads, tile), false);
           }
           d = to_python_summary(r.diagram, r.check);
           d["pieces"] = r.pieces;
@@ -446,7 +440,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       [](const py::object& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
          bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu, const std::string& gds,
          int gds_layer, const std::string& gds_cell, const std::string& gauges_csv, const std::string& columns) {
-        std::vector<Polygon> in = polygons_of(polys);
+        const LayerInput in(polys);
         Files files{csv, gds, gds_layer, dbu, gds_cell};
         GaugeOptions o;
         o.tooth_fraction = tooth_fraction;
@@ -456,7 +450,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
         double seconds = 0;
         py::dict d;
         if (with_pieces) {
-          Result r = files.whole(std::move(in), options(check, pairs, threads, tile));
+          Result r = files.whole(in.flat(), options(check, pairs, threads, tile));
           d = to_python(r);
           py::gil_scoped_release unlocked;
           const auto t0 = std::chrono::steady_clock::now();
@@ -469,7 +463,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
           StreamResult r;
           {
             py::gil_scoped_release unlocked;
-            r = files.stream(std::move(in), options(check, pairs, threads, tile), true);
+            r = files.stream(in.flat(), options(check, pairs, threads, tile), true);
             const auto t0 = std::chrono::steady_clock::now();
             g = gauges_of(r.diagram.sites, std::move(r.stretches), o);
             seconds = r.seconds_stretches + std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -515,9 +509,8 @@ PYBIND11_MODULE(linf_opc_core, m) {
          int windows, int markers, const std::vector<std::string>& names, py::buffer window_box, py::buffer lines,
          py::buffer at, const std::vector<std::string>& labels, py::buffer marker_counts, py::buffer marker_boxes) {
         if (py::len(polygons) != 2) throw py::value_error("polygons must be (points, rings) flat arrays");
-        const py::buffer_info pi = py::buffer(polygons[0]).request(), ri = py::buffer(polygons[1]).request();
-        FlatPolygons flat{int64s_of(pi, "points"), std::size_t(pi.shape[0]) / 2, int64s_of(ri, "rings"),
-                          std::size_t(ri.shape[0])};
+        const LayerInput layer_input(polygons);
+        const FlatPolygons& flat = layer_input.flat();
         const py::buffer_info wi = window_box.request(), li = lines.request(), ai = at.request(),
                               ci = marker_counts.request();
         const std::int64_t* w = int64s_of(wi, "windows");
@@ -566,11 +559,11 @@ PYBIND11_MODULE(linf_opc_core, m) {
       [](const std::string& drawing, const py::object& polys, int layer, int datatype,
          const std::vector<std::tuple<int, int, std::string>>& names, double dbu, const std::string& cell,
          const std::string& path) {
-        const std::vector<Polygon> in = polygons_of(polys);
+        const LayerInput in(polys);
         std::vector<LayerName> ln;
         for (const auto& [l, d, n] : names) ln.push_back({l, d, n});
         py::gil_scoped_release unlocked;
-        return oasis_from_drawing(drawing, in, layer, datatype, ln, dbu, cell, path);
+        return oasis_from_drawing(drawing, in.flat(), layer, datatype, ln, dbu, cell, path);
       },
       py::arg("drawing"), py::arg("polygons"), py::arg("layer"), py::arg("datatype"), py::arg("names"),
       py::arg("dbu"), py::arg("cell"), py::arg("path"),
@@ -684,25 +677,40 @@ PYBIND11_MODULE(linf_opc_core, m) {
 
   m.def(
       "free_windows",
-      [](py::buffer taken, py::buffer points, double side) {
-        const Doubles t = doubles_of(taken, 4, "taken"), p = doubles_of(points, 2, "points");
+      [](py::buffer taken, py::buffer x, py::buffer y, double side, const py::object& ids) {
+        const Doubles t = doubles_of(taken, 4, "taken");
+        // Read in place (the gauge table's centre columns), picked by `ids` (the failed gauges):
+        // on a full layer tens of millions of points.
+        const Column<double> xs = column_of<double>(x, "x"), ys = column_of<double>(y, "y");
+        if (ys.size() != xs.size()) throw py::value_error("x and y must have one value per point");
         std::vector<Box> tb;
         tb.reserve(t.size() / 4);
         for (std::size_t i = 0; i < t.size(); i += 4) tb.push_back({t[i], t[i + 1], t[i + 2], t[i + 3]});
-        std::vector<Vec2> pv;
-        pv.reserve(p.size() / 2);
-        for (std::size_t i = 0; i < p.size(); i += 2) pv.push_back({p[i], p[i + 1]});
+        Paged<Vec2> pv;
+        if (ids.is_none()) {
+          pv.reserve(xs.size());
+          for (std::size_t i = 0; i < xs.size(); ++i) pv.push_back({xs[i], ys[i]});
+        } else {
+          const Column<std::int32_t> is = column_of<std::int32_t>(py::buffer(ids), "ids");
+          pv.reserve(is.size());
+          for (std::size_t k = 0; k < is.size(); ++k) {
+            const std::int32_t i = is[k];
+            if (i < 0 || std::size_t(i) >= xs.size()) throw py::index_error("a point id out of range");
+            pv.push_back({xs[std::size_t(i)], ys[std::size_t(i)]});
+          }
+        }
         std::vector<std::int32_t> kept;
         {
           py::gil_scoped_release unlocked;
-          kept = free_windows(tb, pv, side);
+          kept = free_windows(tb, pv.data(), pv.size(), side);
         }
         return bytes_of(kept);
       },
-      py::arg("taken"), py::arg("points"), py::arg("side"),
-      "The split's extra patterns: taken array('d') x1, y1, x2, y2 per window, points array('d') x, y; in order,\n"
-      "each point whose window (side, centred) overlaps no window before it (open boxes). Returns bytes of int32:\n"
-      "the kept points' indices.");
+      py::arg("taken"), py::arg("x"), py::arg("y"), py::arg("side"), py::arg("ids") = py::none(),
+      "The split's extra patterns: taken array('d') x1, y1, x2, y2 per window; the points' x and y as two\n"
+      "one-dimensional buffers of doubles (strided views too), or with ids (int32) the points x[id], y[id]; in\n"
+      "order, each point whose window (side, centred) overlaps no window before it (open boxes). Returns bytes\n"
+      "of int32: the kept points' positions in that order.");
 
   m.def(
       "cover_points",
@@ -775,9 +783,9 @@ PYBIND11_MODULE(linf_opc_core, m) {
   m.def(
       "cgal_construction_seconds",
       [](const py::object& polys, std::uint64_t seed) {
-        const std::vector<Polygon> in = polygons_of(polys);
+        const LayerInput in(polys);
         py::gil_scoped_release unlocked;
-        return cgal_linf_construction_seconds(sites_of_polygons(merge_polygons(in)), seed);
+        return cgal_linf_construction_seconds(sites_of_polygons(merge_polygons(in.flat()).view()), seed);
       },
       py::arg("polygons"), py::arg("seed") = 1,
       "Benchmark baseline: seconds CGAL's Segment_Delaunay_graph_Linf_2 takes to construct the diagram of the\n"

@@ -2,14 +2,13 @@
 
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
-#include <boost/iterator/counting_iterator.hpp>
-#include <boost/iterator/transform_iterator.hpp>
 #include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
 #include <sstream>
 
+#include "linf/box_tree.hpp"
 #include "linf/distance.hpp"
 #include "parallel.hpp"
 
@@ -20,53 +19,38 @@ namespace bgi = boost::geometry::index;
 namespace {
 using BPt = bg::model::point<double, 2, bg::cs::cartesian>;
 using BBox = bg::model::box<BPt>;
-// The sites' tree holds their boxes in the layout's own integers (a layer has millions of
-// sites: 20 bytes an entry instead of 40); queries are widened to whole numbers, so a site
-// found by a double box is found by its integer cover.
-using IPt = bg::model::point<std::int32_t, 2, bg::cs::cartesian>;
-using IBox = bg::model::box<IPt>;
-using SiteEntry = std::pair<IBox, std::int32_t>;
-using Tree = bgi::rtree<SiteEntry, bgi::rstar<16>>;
 using Entry = std::pair<BBox, std::int32_t>;
 using PairTree = bgi::rtree<Entry, bgi::rstar<16>>;  // the checker's point pairs (a few thousand)
 
-// A site's bounding box as an R-tree entry (assignable, as the packing algorithm needs).
-struct EntryOf {
-  const SiteList* s;
-  SiteEntry operator()(std::int32_t i) const {
-    const Site& t = (*s)[std::size_t(i)];
-    return SiteEntry(IBox(IPt(std::int32_t(std::min(t.a.x, t.b.x)), std::int32_t(std::min(t.a.y, t.b.y))),
-                          IPt(std::int32_t(std::max(t.a.x, t.b.x)), std::int32_t(std::max(t.a.y, t.b.y)))),
-                     i);
-  }
-};
-
 std::int32_t down(double v) { return std::int32_t(std::max(-2147483647.0, std::min(2147483647.0, std::floor(v)))); }
 std::int32_t up(double v) { return std::int32_t(std::max(-2147483647.0, std::min(2147483647.0, std::ceil(v)))); }
-IBox square(double x, double y, double r) { return IBox(IPt(down(x - r), down(y - r)), IPt(up(x + r), up(y + r))); }
-IPt grid_point(double x, double y) { return IPt(down(x + 0.5), down(y + 0.5)); }
+// Queries are widened to whole numbers: a site found by a double box is found by its integer cover.
+IntBox square(double x, double y, double r) { return {down(x - r), down(y - r), up(x + r), up(y + r)}; }
 
+// The sites in a BoxTree (a layer has millions: their index goes to file pages with them).
 class SiteTree {
  public:
-  // Packed from entries made on the fly: a vector of them would cost as much again as the
-  // tree while it is built (hundreds of MB on a layer of millions of sites).
-  explicit SiteTree(const SiteList& s) : s_(s) {
-    const boost::counting_iterator<std::int32_t> first(0), last(std::int32_t(s.size()));
-    const EntryOf entry{&s};
-    tree_ = Tree(boost::make_transform_iterator(first, entry), boost::make_transform_iterator(last, entry));
-  }
+  explicit SiteTree(const SiteList& s)
+      : s_(s), tree_(s.size(), [&s](std::size_t i) {
+          const Site& t = s[i];
+          return IntBox{std::int32_t(std::min(t.a.x, t.b.x)), std::int32_t(std::min(t.a.y, t.b.y)),
+                        std::int32_t(std::max(t.a.x, t.b.x)), std::int32_t(std::max(t.a.y, t.b.y))};
+        }) {}
   // Sites strictly closer than r to (x, y).
   template <class F>
   void within(double x, double y, double r, F&& f) const {
     if (r <= 0) return;
-    for (auto it = tree_.qbegin(bgi::intersects(square(x, y, r))); it != tree_.qend(); ++it) {
-      const double d = dist_site(x, y, s_[it->second]);
-      if (d < r) f(it->second, d);
-    }
+    tree_.query(square(x, y, r), [&](std::int32_t i) {
+      const double d = dist_site(x, y, s_[i]);
+      if (d < r) f(i, d);
+    });
   }
   void k_nearest(double x, double y, unsigned k, std::vector<std::int32_t>& out) const {
     out.clear();
-    for (auto it = tree_.qbegin(bgi::nearest(grid_point(x, y), k)); it != tree_.qend(); ++it) out.push_back(it->second);
+    tree_.nearest(x, y, [&](std::int32_t i) {
+      out.push_back(i);
+      return out.size() < k;
+    });
   }
   // The owner of (x, y) under the ownership rule (least L-inf, then least L1, then point
   // before segment, then lower index) and its distance. `clear` is false when some other
@@ -74,12 +58,14 @@ class SiteTree {
   struct Owner { std::int32_t site = -1; double dist = INFINITY; bool clear = true; };
   Owner owner(double x, double y, double tol) const {
     double bound = INFINITY;
-    // Any two sites bound the owner's distance; the nearest boxes to the grid point are a good guess.
-    for (auto it = tree_.qbegin(bgi::nearest(grid_point(x, y), 2)); it != tree_.qend(); ++it)
-      bound = std::min(bound, dist_site(x, y, s_[it->second]));
+    int guesses = 0;
+    // Any site bounds the owner's distance; the nearest boxes are a good guess.
+    tree_.nearest(x, y, [&](std::int32_t i) {
+      bound = std::min(bound, dist_site(x, y, s_[i]));
+      return ++guesses < 2;
+    });
     std::vector<std::pair<double, std::int32_t>> c;
-    for (auto it = tree_.qbegin(bgi::intersects(square(x, y, bound + tol + 1e-9))); it != tree_.qend(); ++it)
-      c.emplace_back(dist_site(x, y, s_[it->second]), it->second);
+    tree_.query(square(x, y, bound + tol + 1e-9), [&](std::int32_t i) { c.emplace_back(dist_site(x, y, s_[i]), i); });
     Owner o;
     for (const auto& e : c) o.dist = std::min(o.dist, e.first);
     const double exact = 1e-12 * (1 + std::fabs(x) + std::fabs(y) + o.dist);
@@ -106,7 +92,7 @@ class SiteTree {
     return pa != pb ? pa : a < b;
   }
   const SiteList& s_;
-  Tree tree_;
+  BoxTree tree_;
 };
 
 // Counts a failure in `r` and keeps the first few messages.

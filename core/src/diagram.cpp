@@ -55,19 +55,14 @@ Box clip_box(const Sites& s) {
   return {x1 - m, y1 - m, x2 + m, y2 + m};
 }
 
-Result voronoi_of_polygons(const std::vector<Polygon>& polygons, const DiagramOptions& opt) {
+Result voronoi_of_polygons(const FlatPolygons& polygons, const DiagramOptions& opt) {
   auto t0 = std::chrono::steady_clock::now();
-  Sites s = sites_of_polygons(merge_polygons(polygons));
+  Sites s = sites_of_polygons(merge_polygons(polygons).view());
   return finish(std::move(s), opt, since(t0));
 }
 
-Result voronoi_of_polygons(std::vector<Polygon>&& polygons, const DiagramOptions& opt) {
-  auto t0 = std::chrono::steady_clock::now();
-  std::vector<Polygon> merged = merge_polygons(polygons);
-  std::vector<Polygon>().swap(polygons);
-  Sites s = sites_of_polygons(merged);
-  std::vector<Polygon>().swap(merged);
-  return finish(std::move(s), opt, since(t0));
+Result voronoi_of_polygons(const std::vector<Polygon>& polygons, const DiagramOptions& opt) {
+  return voronoi_of_polygons(flat_of(polygons).view(), opt);
 }
 
 Result voronoi_of_sites(const std::vector<Point>& points, const std::vector<Segment>& segments,

@@ -256,14 +256,15 @@ class GdsReader {
 
 std::vector<Ring> outlines(const Polygon& p) { return without_holes(p); }
 
-std::size_t oasis_from_drawing(const std::string& drawing, const std::vector<Polygon>& input, int layer,
+std::size_t oasis_from_drawing(const std::string& drawing, const FlatPolygons& input, int layer,
                                int datatype, const std::vector<LayerName>& names, double dbu,
                                const std::string& cell, const std::string& path) {
   OasisWriter w(path, dbu, cell);
   for (const LayerName& n : names) w.layer_name(n.name, n.layer, n.datatype);
   std::size_t shapes = 0;
-  for (const Polygon& p : input)
-    for (const Ring& r : without_holes(p)) w.polygon(layer, datatype, r), ++shapes;
+  const PolygonIndex ix(input);
+  for (std::size_t i = 0; i < ix.size(); ++i)
+    for (const Ring& r : without_holes(ix.polygon(i))) w.polygon(layer, datatype, r), ++shapes;
   GdsReader in(drawing);
   int type = 0, element = 0, l = 0, d = 0;
   std::string data, xy, text;

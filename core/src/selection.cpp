@@ -116,7 +116,7 @@ Selection select_windows_brute(const Spot* ranked, std::size_t n, const std::vec
   });
 }
 
-std::vector<std::int32_t> free_windows(const std::vector<Box>& taken, const std::vector<Vec2>& points, double side) {
+std::vector<std::int32_t> free_windows(const std::vector<Box>& taken, const Vec2* points, std::size_t n, double side) {
   // Windows by the grid cell (of the window side) of their lower-left corner: a window that
   // overlaps the square at b has its corner within one cell of b's.
   std::unordered_map<std::int64_t, std::vector<Box>> grid;
@@ -127,7 +127,7 @@ std::vector<std::int32_t> free_windows(const std::vector<Box>& taken, const std:
   for (const Box& b : taken) add(b);
   std::vector<std::int32_t> kept;
   const double h = 0.5 * side;
-  for (std::size_t k = 0; k < points.size(); ++k) {
+  for (std::size_t k = 0; k < n; ++k) {
     const Box b{points[k].x - h, points[k].y - h, points[k].x + h, points[k].y + h};
     bool free = true;
     for (std::int64_t i = cell(b.x1) - 1; free && i <= cell(b.x2) + 1; ++i)

@@ -1,7 +1,7 @@
 #include "linf/sites.hpp"
 
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
+#include "linf/box_tree.hpp"
+
 #include <boost/polygon/polygon.hpp>
 #include <algorithm>
 #include <map>
@@ -15,15 +15,6 @@ namespace {
 using BPoint = bp::point_data<int>;
 using BPolygon = bp::polygon_with_holes_data<int>;
 using BSimple = bp::polygon_data<int>;
-
-constexpr Coord kLimit = Coord(1) << 30;
-
-// Every input point passes here once: intersections must stay representable, and the merge's
-// and the checker's boxes are 32-bit.
-void check_range(const Point& p) {
-  if (p.x <= -kLimit || p.x >= kLimit || p.y <= -kLimit || p.y >= kLimit)
-    throw std::invalid_argument("coordinate outside +-2^30 database units");
-}
 
 __int128 cross(const Point& o, const Point& a, const Point& b) {
   return __int128(a.x - o.x) * (b.y - o.y) - __int128(a.y - o.y) * (b.x - o.x);
@@ -69,7 +60,7 @@ Ring oriented(Ring r, bool ccw) {
 BSimple to_boost(const Ring& r) {
   std::vector<BPoint> pts;
   pts.reserve(r.size());
-  for (const Point& p : r) pts.emplace_back(int(p.x), int(p.y));  // checked in merge_groups
+  for (const Point& p : r) pts.emplace_back(int(p.x), int(p.y));  // checked by PolygonIndex
   BSimple s;
   s.set(pts.begin(), pts.end());
   return s;
@@ -81,13 +72,15 @@ Ring from_boost(const BSimple& s) {
   return r;
 }
 
-// One Boost.Polygon scan over the polygons `ids` of `in`, appended to `out`.
-void merge_group(const std::vector<Polygon>& in, const std::vector<std::int32_t>& ids, std::vector<Polygon>& out) {
+// One Boost.Polygon scan over the polygons ids[0, n) of `ix`, appended to `out` with the
+// least vertex of each (the sort key) in `keys`.
+void merge_group(const PolygonIndex& ix, const std::int32_t* ids, std::size_t n, PolygonArrays& out,
+                 Paged<Point>& keys) {
   // Everything goes into one set and is merged by a single scan at get(): a union per shape
   // would rescan the growing set each time (minutes on a layer of 100K shapes).
   bp::polygon_set_data<int> set;
-  for (const std::int32_t i : ids) {
-    const Polygon& p = in[std::size_t(i)];
+  for (std::size_t k = 0; k < n; ++k) {
+    const Polygon p = ix.polygon(std::size_t(ids[k]));
     BPolygon b;
     const BSimple outer = to_boost(p.outer);
     b.set(outer.begin(), outer.end());
@@ -107,118 +100,138 @@ void merge_group(const std::vector<Polygon>& in, const std::vector<std::int32_t>
       Ring r = clean_ring(from_boost(*h));
       if (!r.empty()) p.holes.push_back(oriented(r, false));
     }
-    out.push_back(std::move(p));
+    keys.push_back(*std::min_element(p.outer.begin(), p.outer.end()));
+    out.add(p);
   }
 }
 
 // Groups of whole clusters of polygons whose boxes overlap or touch (only those can merge),
 // each group about `size` polygons: merged group by group, a layer of millions of shapes needs
 // the scan's memory for one group at a time (one scan over five million wires held about 7 GB).
-std::vector<std::vector<std::int32_t>> merge_groups(const std::vector<Polygon>& in, std::size_t size) {
-  namespace bg = boost::geometry;
-  namespace bgi = boost::geometry::index;
-  using IPt = bg::model::point<std::int32_t, 2, bg::cs::cartesian>;
-  using IBox = bg::model::box<IPt>;
-  using Entry = std::pair<IBox, std::int32_t>;
-  const std::size_t n = in.size();
-  std::vector<Entry> boxes;
-  boxes.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    Coord x1 = kLimit, y1 = kLimit, x2 = -kLimit, y2 = -kLimit;
-    for (const Point& p : in[i].outer) {
-      check_range(p);
-      x1 = std::min(x1, p.x), y1 = std::min(y1, p.y), x2 = std::max(x2, p.x), y2 = std::max(y2, p.y);
-    }
-    for (const Ring& h : in[i].holes)
-      for (const Point& p : h) check_range(p);
-    if (in[i].outer.empty()) x1 = y1 = x2 = y2 = 0;
-    boxes.push_back({IBox(IPt(std::int32_t(x1), std::int32_t(y1)), IPt(std::int32_t(x2), std::int32_t(y2))),
-                     std::int32_t(i)});
-  }
-  std::vector<std::int32_t> parent(n);
+// `ids` gets the polygons cluster by cluster, clusters in the order of their first polygon;
+// the result is where each group ends in it.
+std::vector<std::size_t> merge_groups(const PolygonIndex& ix, std::size_t size, Paged<std::int32_t>& ids) {
+  const std::size_t n = ix.size();
+  // Union-find; a root is the least polygon of its cluster, whatever the order of the joins.
+  Paged<std::int32_t> parent;
+  parent.resize(n);
   for (std::size_t i = 0; i < n; ++i) parent[i] = std::int32_t(i);
   auto root = [&](std::int32_t x) {
     while (parent[std::size_t(x)] != x) x = parent[std::size_t(x)] = parent[std::size_t(parent[std::size_t(x)])];
     return x;
   };
   {
-    const bgi::rtree<Entry, bgi::rstar<16>> tree(boxes.begin(), boxes.end());
-    std::vector<Entry> hit;
-    for (const Entry& e : boxes) {
-      hit.clear();
-      tree.query(bgi::intersects(e.first), std::back_inserter(hit));  // closed boxes: touching counts
-      for (const Entry& h : hit) {
-        const std::int32_t a = root(e.second), b = root(h.second);
+    const BoxTree tree(n, [&](std::size_t i) { return ix.box(i); });
+    for (std::size_t i = 0; i < n; ++i)
+      tree.query(ix.box(i), [&](std::int32_t h) {  // closed boxes: touching counts
+        const std::int32_t a = root(std::int32_t(i)), b = root(h);
         if (a != b) parent[std::size_t(std::max(a, b))] = std::min(a, b);
-      }
+      });
+  }
+  // Counting sort by root, stable: clusters in the order of their least polygon.
+  Paged<std::int32_t>& start = parent;  // reused: the roots first, then where each cluster starts
+  Paged<std::int32_t> count;
+  count.resize(n);
+  for (std::size_t i = 0; i < n; ++i) ++count[std::size_t(root(std::int32_t(i)))];
+  for (std::size_t i = 0; i < n; ++i) start[i] = root(std::int32_t(i));  // every parent is its root now
+  std::vector<std::size_t> ends;
+  std::size_t at = 0, group = 0;
+  ids.resize(n);
+  {
+    Paged<std::int32_t> place;
+    place.resize(n);
+    for (std::size_t r = 0; r < n; ++r) {
+      if (count[r] == 0) continue;
+      const std::size_t c = std::size_t(count[r]);
+      if (group > 0 && group + c > size) ends.push_back(at), group = 0;
+      place[r] = std::int32_t(at);
+      at += c, group += c;
     }
+    if (group > 0) ends.push_back(at);
+    for (std::size_t i = 0; i < n; ++i) ids[std::size_t(place[std::size_t(start[i])]++)] = std::int32_t(i);
   }
-  // Clusters in the order of their first polygon, packed into groups.
-  std::vector<std::vector<std::int32_t>> cluster_of(n);
-  std::vector<std::int32_t> order;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int32_t r = root(std::int32_t(i));
-    if (cluster_of[std::size_t(r)].empty()) order.push_back(r);
-    cluster_of[std::size_t(r)].push_back(std::int32_t(i));
-  }
-  std::vector<std::vector<std::int32_t>> groups(1);
-  for (const std::int32_t r : order) {
-    if (!groups.back().empty() && groups.back().size() + cluster_of[std::size_t(r)].size() > size) groups.emplace_back();
-    auto& g = groups.back();
-    g.insert(g.end(), cluster_of[std::size_t(r)].begin(), cluster_of[std::size_t(r)].end());
-    std::vector<std::int32_t>().swap(cluster_of[std::size_t(r)]);
-  }
-  return groups;
+  return ends;
 }
 
 }  // namespace
 
-std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in, std::size_t group) {
-  std::vector<Polygon> out;
-  for (const std::vector<std::int32_t>& g : merge_groups(in, group)) merge_group(in, g, out);
-  // Boost's output order depends on its scanline; sort for reproducible site numbering.
-  std::sort(out.begin(), out.end(), [](const Polygon& a, const Polygon& b) {
-    return std::min_element(a.outer.begin(), a.outer.end())[0] < std::min_element(b.outer.begin(), b.outer.end())[0];
-  });
+PolygonArrays merge_polygons(const FlatPolygons& in, std::size_t group) {
+  const PolygonIndex ix(in);
+  PolygonArrays merged;
+  Paged<Point> keys;
+  {
+    Paged<std::int32_t> ids;
+    std::size_t from = 0;
+    for (const std::size_t to : merge_groups(ix, group, ids)) {
+      merge_group(ix, ids.data() + from, to - from, merged, keys);
+      from = to;
+    }
+  }
+  // Boost's output order depends on its scanline; sorted by least vertex for reproducible site
+  // numbering (an order of ids sorted as the polygons themselves were: the same order).
+  Paged<std::int32_t> order;
+  order.resize(merged.count);
+  for (std::size_t i = 0; i < merged.count; ++i) order[i] = std::int32_t(i);
+  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) { return keys[std::size_t(a)] < keys[std::size_t(b)]; });
+  const PolygonIndex mx(merged.view());
+  PolygonArrays out;
+  for (const std::int32_t i : order) {
+    mx.rings(std::size_t(i), [&](const std::int64_t* xy, std::size_t n, bool outer) {
+      for (std::size_t j = 0; j < 2 * n; ++j) out.points.push_back(xy[j]);
+      out.rings.push_back(outer ? std::int64_t(n) : -std::int64_t(n));
+    });
+    ++out.count;
+  }
   return out;
 }
 
-Sites sites_of_polygons(const std::vector<Polygon>& merged) {
+std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in, std::size_t group) {
+  const PolygonArrays flat = flat_of(in);
+  return polygons_of(merge_polygons(flat.view(), group).view());
+}
+
+Sites sites_of_polygons(const FlatPolygons& merged) {
   Sites s;
-  std::int32_t ri = 0;
-  for (std::size_t pi = 0; pi < merged.size(); ++pi) {
-    std::vector<const Ring*> rings{&merged[pi].outer};
-    for (const Ring& h : merged[pi].holes) rings.push_back(&h);
-    for (const Ring* r : rings) {
-      const std::int32_t n = std::int32_t(r->size());
-      const std::int32_t base = std::int32_t(s.sites.size());
-      // Layout: vertex i at base + 2i, edge i (vertex i -> i+1) at base + 2i + 1.
-      for (std::int32_t i = 0; i < n; ++i) {
-        Site v;
-        v.a = v.b = (*r)[i];
-        v.shape = std::int32_t(pi), v.ring = ri, v.index = i;
-        v.end0 = base + 2 * ((i + n - 1) % n) + 1;
-        v.end1 = base + 2 * i + 1;
-        s.sites.push_back(v);
-        Site e;
-        e.a = (*r)[i], e.b = (*r)[(i + 1) % n];
-        e.shape = std::int32_t(pi), e.ring = ri, e.index = i;
-        e.end0 = base + 2 * i;
-        e.end1 = base + 2 * ((i + 1) % n);
-        s.sites.push_back(e);
-      }
-      ++ri;
+  std::int32_t pi = -1, ri = 0;
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < merged.n_rings; ++k, ++ri) {
+    const std::int64_t c = merged.rings[k];
+    const std::int32_t n = std::int32_t(c < 0 ? -c : c);
+    if (c >= 0) ++pi;
+    const std::int64_t* xy = merged.points + 2 * at;
+    at += std::size_t(n);
+    auto point = [&](std::int32_t i) { return Point{xy[2 * i], xy[2 * i + 1]}; };
+    const std::int32_t base = std::int32_t(s.sites.size());
+    // Layout: vertex i at base + 2i, edge i (vertex i -> i+1) at base + 2i + 1.
+    for (std::int32_t i = 0; i < n; ++i) {
+      Site v;
+      v.a = v.b = point(i);
+      v.shape = pi, v.ring = ri, v.index = i;
+      v.end0 = base + 2 * ((i + n - 1) % n) + 1;
+      v.end1 = base + 2 * i + 1;
+      s.sites.push_back(v);
+      Site e;
+      e.a = point(i), e.b = point((i + 1) % n);
+      e.shape = pi, e.ring = ri, e.index = i;
+      e.end0 = base + 2 * i;
+      e.end1 = base + 2 * ((i + 1) % n);
+      s.sites.push_back(e);
     }
   }
-  s.shapes = merged.size();
+  s.shapes = std::size_t(pi + 1);
   return s;
+}
+
+Sites sites_of_polygons(const std::vector<Polygon>& merged) {
+  const PolygonArrays flat = flat_of(merged);
+  return sites_of_polygons(flat.view());
 }
 
 Sites sites_of_plain(const std::vector<Point>& points, const std::vector<Segment>& segments) {
   Sites s;
   std::map<Point, std::int32_t> at;
   auto point_site = [&](const Point& p, std::int32_t shape) {
-    check_range(p);
+    check_range(p.x, p.y);
     auto it = at.find(p);
     if (it != at.end()) return it->second;
     Site v;

@@ -120,15 +120,11 @@ void merge(const Runs& runs, const Pair& pair) {
 
 }  // namespace
 
-StreamResult stream_voronoi(std::vector<Polygon>&& polygons, const DiagramOptions& opt, const StreamOutputs& out) {
+StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& opt, const StreamOutputs& out) {
   StreamResult r;
   Diagram& d = r.diagram;
   auto t0 = std::chrono::steady_clock::now();
-  {
-    std::vector<Polygon> merged = merge_polygons(polygons);
-    std::vector<Polygon>().swap(polygons);
-    d.sites = sites_of_polygons(merged);
-  }
+  d.sites = sites_of_polygons(merge_polygons(polygons).view());
   d.seconds_merge = since(t0);
   d.clip = clip_box(d.sites);
   d.attempts = 1;
@@ -232,6 +228,10 @@ StreamResult stream_voronoi(std::vector<Polygon>&& polygons, const DiagramOption
   }
   r.seconds_stretches = t_stretches;
   return r;
+}
+
+StreamResult stream_voronoi(const std::vector<Polygon>& polygons, const DiagramOptions& opt, const StreamOutputs& out) {
+  return stream_voronoi(flat_of(polygons).view(), opt, out);
 }
 
 }  // namespace linf

@@ -8,6 +8,8 @@
 #include <thread>
 #include <utility>
 
+#include "linf/paged.hpp"
+
 namespace linf::detail {
 
 namespace {
@@ -37,7 +39,7 @@ class SiteGrid {
  public:
   SiteGrid(const SiteList& s, const Box& root, int level) : s_(s), root_(root), n_(std::size_t(1) << level) {
     cw_ = (root.x2 - root.x1) / double(n_), ch_ = (root.y2 - root.y1) / double(n_);
-    start_.assign(n_ * n_ + 1, 0);
+    start_.resize(n_ * n_ + 1);
     for (int pass = 0; pass < 2; ++pass) {
       std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
       for (std::size_t t = 0; t < s.size(); ++t) {
@@ -58,10 +60,9 @@ class SiteGrid {
 
   // Sites whose bounding box comes within L-inf distance r of b (a superset of the sites
   // within r of b), ascending, each once. `seen` is the caller's scratch, one entry a site.
-  void near(const Box& b, double r, std::vector<int>& out, std::vector<std::uint32_t>& seen,
-            std::uint32_t& stamp) const {
+  void near(const Box& b, double r, std::vector<int>& out, Paged<std::uint32_t>& seen, std::uint32_t& stamp) const {
     out.clear();
-    if (seen.size() != s_.size()) seen.assign(s_.size(), 0), stamp = 0;
+    if (seen.size() != s_.size()) seen.clear(), seen.resize(s_.size()), stamp = 0;
     if (++stamp == 0) std::fill(seen.begin(), seen.end(), 0), stamp = 1;
     std::size_t i1, i2, j1, j2;
     range(b, r, i1, i2, j1, j2);
@@ -97,8 +98,9 @@ class SiteGrid {
   Box root_;
   std::size_t n_;
   double cw_ = 1, ch_ = 1;
-  std::vector<std::size_t> start_;
-  std::vector<int> ids_;
+  // Whole-layer arrays (a site's id once or more): Paged, as the sites are.
+  Paged<std::size_t> start_;
+  Paged<int> ids_;
 };
 
 // The task's halo: every site that can own a point of b. With U the least upper bound of the
@@ -106,7 +108,7 @@ class SiteGrid {
 // grows to U (+ the rounding allowance) until it covers it. The site attaining U is then
 // found too, so the builder's first pruning gives what it gives with every site.
 void gather(const SiteGrid& grid, const SiteList& sites, const Box& b, const Box& root, double tau,
-            std::vector<int>& out, std::vector<std::uint32_t>& seen, std::uint32_t& stamp) {
+            std::vector<int>& out, Paged<std::uint32_t>& seen, std::uint32_t& stamp) {
   double r = std::max(b.x2 - b.x1, b.y2 - b.y1);
   const double span = std::max(root.x2 - root.x1, root.y2 - root.y1);
   for (;;) {
@@ -150,9 +152,11 @@ void build_tiled(const SiteList& sites, const Box& root, const BuildOptions& opt
   const SiteGrid grid(sites, root, T + 1);  // buckets finer than tasks: tighter halos
 
   std::vector<std::vector<int>> halo(per * per);
-  struct Scratch { std::vector<std::uint32_t> seen; std::uint32_t stamp = 0; };
+  struct Scratch { Paged<std::uint32_t> seen; std::uint32_t stamp = 0; };  // one entry a site
   std::vector<Scratch> scratch(worker_count(per * per, opt.threads));
-  std::vector<int> local(sites.size(), -1);  // global id -> id in the current tile
+  Paged<int> local;  // global id -> id in the current tile
+  local.resize(sites.size());
+  std::fill(local.begin(), local.end(), -1);
   // A tile's end — its pieces collected and joined, then handed to the sink — runs on a thread
   // of its own while the next tile is gathered and built: done in line, it left all cores but
   // one idle. Tiles still reach the sink one at a time and in order. The workers' raw pieces

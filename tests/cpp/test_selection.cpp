@@ -114,7 +114,7 @@ TEST(Selection, FreeWindowsAgreeWithBruteForce) {
         want.push_back(std::int32_t(k));
       }
     }
-    ASSERT_EQ(free_windows(taken, points, side), want) << "round " << round;
+    ASSERT_EQ(free_windows(taken, points.data(), points.size(), side), want) << "round " << round;
     kept_total += want.size();
     dropped_total += points.size() - want.size();
   }

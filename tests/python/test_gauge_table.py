@@ -99,6 +99,17 @@ class GaugeTableColumns(unittest.TestCase):
         self.assertEqual(list(gauges.compute(flat).gauges), self.rows)
         self.assertEqual(core.voronoi_polygons(flat.flat())["pieces"], core.voronoi_polygons(self.polys)["pieces"])
 
+    def test_flat_arrays_that_do_not_add_up_are_refused(self):
+        # The core reads the arrays in place: each way they can disagree is a ValueError.
+        box = [0, 0, 10, 0, 10, 10, 0, 10]
+        for points, rings, says in [(box, [5], "more points"), (box, [-4], "outer ring"),
+                                    (box + [20, 20], [4], "left over"),
+                                    ([0, 0, 1 << 30, 0, 10, 10], [3], r"2\^30")]:
+            with self.assertRaisesRegex(ValueError, says):
+                core.voronoi_polygons((array("q", points), array("q", rings)))
+        with self.assertRaisesRegex(ValueError, "64-bit"):
+            core.voronoi_polygons((array("i", box), array("q", [4])))
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

@@ -13,17 +13,9 @@
 #include <vector>
 
 #include "linf/oasis.hpp"
+#include "linf/polygons.hpp"
 
 namespace linf {
-
-// Polygons as two flat arrays: points x0, y0, x1, y1, ...; rings = point counts, each outer
-// ring followed by its holes with negative counts (plugin/python/linf_opc/polygons.py).
-struct FlatPolygons {
-  const std::int64_t* points = nullptr;
-  std::size_t n_points = 0;  // points, not coordinates
-  const std::int64_t* rings = nullptr;
-  std::size_t n_rings = 0;
-};
 
 struct Clip {
   std::string name;

@@ -11,6 +11,7 @@
 #include "linf/builder.hpp"
 #include "linf/checker.hpp"
 #include "linf/piece.hpp"
+#include "linf/polygons.hpp"
 #include "linf/site.hpp"
 
 namespace linf {
@@ -35,9 +36,9 @@ struct Result {
 // The input's bounding box enlarged by its larger side on every side: where rays end.
 Box clip_box(const Sites& s);
 
+// Polygons as flat arrays (a view: nothing copied; polygons.hpp), or as a vector.
+Result voronoi_of_polygons(const FlatPolygons& polygons, const DiagramOptions& opt = {});
 Result voronoi_of_polygons(const std::vector<Polygon>& polygons, const DiagramOptions& opt = {});
-// The same, freeing the input once it is merged (a large layer's input is hundreds of MB).
-Result voronoi_of_polygons(std::vector<Polygon>&& polygons, const DiagramOptions& opt = {});
 Result voronoi_of_sites(const std::vector<Point>& points, const std::vector<Segment>& segments,
                         const DiagramOptions& opt = {});
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "linf/polygons.hpp"
 #include "linf/site.hpp"
 
 namespace linf {
@@ -49,7 +50,7 @@ std::vector<Ring> outlines(const Polygon& p);
 
 // The input polygons on (layer, datatype), then the drawing's paths and texts, into `path`.
 // Returns the number of shapes written. Throws std::runtime_error on an unreadable drawing.
-std::size_t oasis_from_drawing(const std::string& drawing, const std::vector<Polygon>& input, int layer,
+std::size_t oasis_from_drawing(const std::string& drawing, const FlatPolygons& input, int layer,
                                int datatype, const std::vector<LayerName>& names, double dbu,
                                const std::string& cell, const std::string& path);
 

@@ -83,7 +83,7 @@ std::vector<Box> cover_points(std::vector<Vec2> points, double side);
 // it) overlaps no window before it, `taken` first and then those kept here. Overlap is of open
 // boxes: windows that only touch do not overlap. `taken` windows are no wider than `side`.
 // Returns the indices of the kept points.
-std::vector<std::int32_t> free_windows(const std::vector<Box>& taken, const std::vector<Vec2>& points, double side);
+std::vector<std::int32_t> free_windows(const std::vector<Box>& taken, const Vec2* points, std::size_t n, double side);
 
 // The layer's pitch when none is given: the typical width plus the typical space, each the
 // median of gauge CDs weighted by their extension; spaces wider than ten typical widths are

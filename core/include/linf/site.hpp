@@ -1,6 +1,7 @@
 // Sites: the input of the diagram. Integer database units, as in a layout.
 #pragma once
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "linf/paged.hpp"
@@ -8,6 +9,14 @@
 namespace linf {
 
 using Coord = std::int64_t;
+
+// Input coordinates lie within +-2^30 database units: intersections stay representable, and
+// the merge's and the checker's boxes are 32-bit. Every input point passes here once.
+constexpr Coord kCoordLimit = Coord(1) << 30;
+inline void check_range(Coord x, Coord y) {
+  if (x <= -kCoordLimit || x >= kCoordLimit || y <= -kCoordLimit || y >= kCoordLimit)
+    throw std::invalid_argument("coordinate outside +-2^30 database units");
+}
 
 struct Point {
   Coord x = 0, y = 0;

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "linf/polygons.hpp"
 #include "linf/site.hpp"
 
 namespace linf {
@@ -12,9 +13,13 @@ namespace linf {
 // Coordinates must lie within +-2^30 so that intersections stay representable. Polygons whose
 // boxes overlap or touch are merged together, about `group` of them in one scan (memory), and
 // the result does not depend on `group`.
+// The result is ordered by each polygon's least vertex. Throws std::invalid_argument on a
+// coordinate out of range or flat arrays that do not add up.
+PolygonArrays merge_polygons(const FlatPolygons& in, std::size_t group = std::size_t(1) << 16);
 std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in, std::size_t group = std::size_t(1) << 16);
 
 // Sites of already merged polygons: every vertex a point site, every edge an open segment site.
+Sites sites_of_polygons(const FlatPolygons& merged);
 Sites sites_of_polygons(const std::vector<Polygon>& merged);
 
 // Sites of plain input: every segment (and its endpoints) and every point. Segments must not

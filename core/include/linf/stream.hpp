@@ -43,6 +43,7 @@ struct StreamResult {
 };
 
 // Throws DiagramError if the checker rejects the diagram, after removing the files it wrote.
-StreamResult stream_voronoi(std::vector<Polygon>&& polygons, const DiagramOptions& opt, const StreamOutputs& out);
+StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& opt, const StreamOutputs& out);
+StreamResult stream_voronoi(const std::vector<Polygon>& polygons, const DiagramOptions& opt, const StreamOutputs& out);
 
 }  // namespace linf

@@ -448,7 +448,7 @@ def write_split(inp, split):
         members = split.members(which)
         names[which] = clips.write_library(inp.file("%s.oas" % which), which, members, inp.polygons, inp.layer,
                                            inp.datatype, inp.dbu)
-        gauge_output.write_csv([p.gauge for p in members], inp.file("%s_gauges.csv" % which), inp.dbu)
+        gauge_output.write_csv((p.gauge for p in members), inp.file("%s_gauges.csv" % which), inp.dbu)
     s = split.summary()
     output.write_json(s, inp.file("split.json"))
     return s

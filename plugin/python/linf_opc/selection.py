@@ -66,7 +66,8 @@ class Run:
     def __init__(self, mode, size, side, raw, gauges, n_markers, types, failed_of=None):
         self.mode, self.size, self.side = mode, size, side
         self.windows = raw["windows"]  # (x1, y1, x2, y2, gauge index, [markers newly covered])
-        self.used = [gauges[i] for i in raw["used"]]
+        self._used = array("i", raw["used"])  # the used gauges' indices
+        self._gauges = gauges
         self.n_failed = raw["failed"]
         self._failed_spots = raw["failed_spots"]
         self._failed_of = failed_of
@@ -80,6 +81,12 @@ class Run:
         self.types = types
 
     @property
+    def used(self):
+        """The used gauges, rank order, made on each call: twelve runs of a full layer's windows
+        would otherwise hold a Gauge record per window each to the end of the flow."""
+        return [self._gauges[i] for i in self._used]
+
+    @property
     def failed_spots(self):
         """The failed gauges' indices (int32). On a large layer most gauges fail, so a study
         keeps only their count and this run's selection is made again when they are asked for."""
@@ -89,7 +96,7 @@ class Run:
 
     def row(self, dbu):
         """The columns of Tables 5.2-5.4 (T in seconds, the core's selection time)."""
-        gu, gf = len(self.used), self.n_failed
+        gu, gf = len(self._used), self.n_failed
         return {"mode": self.mode, "W_s": "%dx%d" % (self.size, self.size), "side_um": round(self.side * dbu, 6),
                 "M_c": self.covered, "markers": self.n_markers, "G_u": gu, "r_u": overall(self.used_by_type),
                 "G_f": gf, "r_f": overall(self.failed_by_type), "redundant": self.redundant,
@@ -101,7 +108,7 @@ class Run:
         return {"used": by_type(self.used_by_type, self.types), "failed": by_type(self.failed_by_type, self.types)}
 
     def representatives(self):
-        total = len(self.used)
+        total = len(self._used)
         return [{"type": t, "S_n": s, "N_g": n, "similarity_pct": round(100.0 * n / total, 4)}
                 for t, s, n in classes(self.used)]
 

@@ -12,13 +12,25 @@ in the README ("Calibration and verification").
 """
 import random
 from array import array
-from collections import namedtuple
 
 from . import core
 
 SETS = ("calibration", "verification")
 
-Pattern = namedtuple("Pattern", "box gauge markers covers_marker")  # box in DBU, gauge a Gauge
+class Pattern:
+    """A selected window: box (x1, y1, x2, y2) in DBU, its gauge (gauges[index], made when asked
+    for: a full layer's split has hundreds of thousands of patterns, and a Gauge each would be
+    most of the flow's memory at its end), the markers inside, and whether it covers a marker
+    first (a selection window) or not (a failed gauge's window)."""
+    __slots__ = ("box", "index", "markers", "covers_marker", "_gauges")
+
+    def __init__(self, box, gauges, index, markers, covers_marker):
+        self.box, self._gauges, self.index = box, gauges, index
+        self.markers, self.covers_marker = markers, covers_marker
+
+    @property
+    def gauge(self):
+        return self._gauges[self.index]
 
 
 def patterns_of(run, gauges, markers):
@@ -35,23 +47,23 @@ def patterns_of(run, gauges, markers):
                     for j in range(int(b[1] // side) - 1, int(b[3] // side) + 2) for m in buckets.get((i, j), ()))
         return sorted(m for m in found if m[0] <= b[2] and m[2] >= b[0] and m[1] <= b[3] and m[3] >= b[1])
 
-    out = [Pattern((x1, y1, x2, y2), gauges[gi], markers_in((x1, y1, x2, y2)), True)
+    out = [Pattern((x1, y1, x2, y2), gauges, gi, markers_in((x1, y1, x2, y2)), True)
            for x1, y1, x2, y2, gi, ms in run.windows]
-    # Millions of failed spots on a large layer: their centres as one array, the overlap test in the core.
+    # Millions of failed spots on a large layer: the core reads their centres in the table's
+    # columns, picked by index.
     failed = run.failed_spots
+    taken = array("d", (v for w in run.windows for v in w[:4]))
     if hasattr(gauges, "centres"):
         cx, cy = gauges.centres()
-        points = array("d", bytes(16 * len(failed)))
-        m = memoryview(points)
-        m[0::2] = array("d", (cx[gi] for gi in failed))
-        m[1::2] = array("d", (cy[gi] for gi in failed))
+        kept = core.free_windows(taken, cx, cy, side, ids=failed)
     else:
-        points = array("d", (v for gi in failed for v in (gauges[gi].cx, gauges[gi].cy)))
-    taken = array("d", (v for w in run.windows for v in w[:4]))
+        kept = core.free_windows(taken, array("d", (gauges[gi].cx for gi in failed)),
+                                 array("d", (gauges[gi].cy for gi in failed)), side)
     h = 0.5 * side
-    for k in memoryview(core.free_windows(taken, points, side)).cast("i"):
-        g = gauges[failed[k]]
-        out.append(Pattern((g.cx - h, g.cy - h, g.cx + h, g.cy + h), g, [], False))
+    for k in memoryview(kept).cast("i"):
+        gi = failed[k]
+        g = gauges[gi]
+        out.append(Pattern((g.cx - h, g.cy - h, g.cx + h, g.cy + h), gauges, gi, [], False))
     return out
 
 
