@@ -558,19 +558,27 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "oasis_from_drawing",
       [](const std::string& drawing, const py::object& polys, int layer, int datatype,
          const std::vector<std::tuple<int, int, std::string>>& names, double dbu, const std::string& cell,
-         const std::string& path) {
+         const std::string& path, const std::vector<std::tuple<int, int, py::buffer>>& boxes) {
         const LayerInput in(polys);
         std::vector<LayerName> ln;
         for (const auto& [l, d, n] : names) ln.push_back({l, d, n});
+        std::vector<LayerBoxes> lb;
+        for (const auto& [l, d, b] : boxes) {
+          const py::buffer_info bi = b.request();
+          const std::int64_t* v = int64s_of(bi, "boxes");
+          if (bi.shape[0] % 4) throw py::value_error("boxes: four values a box, x1, y1, x2, y2");
+          lb.push_back({l, d, {}});
+          for (py::ssize_t i = 0; i < bi.shape[0]; i += 4) lb.back().boxes.push_back({v[i], v[i + 1], v[i + 2], v[i + 3]});
+        }
         py::gil_scoped_release unlocked;
-        return oasis_from_drawing(drawing, in.flat(), layer, datatype, ln, dbu, cell, path);
+        return oasis_from_drawing(drawing, in.flat(), layer, datatype, ln, dbu, cell, path, lb);
       },
       py::arg("drawing"), py::arg("polygons"), py::arg("layer"), py::arg("datatype"), py::arg("names"),
-      py::arg("dbu"), py::arg("cell"), py::arg("path"),
+      py::arg("dbu"), py::arg("cell"), py::arg("path"), py::arg("boxes") = std::vector<std::tuple<int, int, py::buffer>>{},
       "Writes a result layout as OASIS without KLayout holding it: the polygons (the input layer) on\n"
-      "layer/datatype, then every path and text of a GDSII drawing the core wrote (write_gauges_gds, the\n"
-      "diagram's draw_layer), in one cell; names: (layer, datatype, name) for the result layers. Returns the\n"
-      "number of shapes written.");
+      "layer/datatype, then boxes: [(layer, datatype, array('q') x1, y1, x2, y2 a box)], then every path and\n"
+      "text of a GDSII drawing the core wrote (write_gauges_gds, the diagram's draw_layer; '' for none), in one\n"
+      "cell; names: (layer, datatype, name) for the result layers. Returns the number of shapes written.");
 
   m.def(
       "write_gauges_gds",

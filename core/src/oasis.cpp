@@ -258,13 +258,20 @@ std::vector<Ring> outlines(const Polygon& p) { return without_holes(p); }
 
 std::size_t oasis_from_drawing(const std::string& drawing, const FlatPolygons& input, int layer,
                                int datatype, const std::vector<LayerName>& names, double dbu,
-                               const std::string& cell, const std::string& path) {
+                               const std::string& cell, const std::string& path,
+                               const std::vector<LayerBoxes>& boxes) {
   OasisWriter w(path, dbu, cell);
   for (const LayerName& n : names) w.layer_name(n.name, n.layer, n.datatype);
   std::size_t shapes = 0;
   const PolygonIndex ix(input);
   for (std::size_t i = 0; i < ix.size(); ++i)
     for (const Ring& r : without_holes(ix.polygon(i))) w.polygon(layer, datatype, r), ++shapes;
+  for (const LayerBoxes& lb : boxes)
+    for (const auto& b : lb.boxes) w.polygon(lb.layer, lb.datatype, {{b[0], b[1]}, {b[2], b[1]}, {b[2], b[3]}, {b[0], b[3]}}), ++shapes;
+  if (drawing.empty()) {
+    w.close();
+    return shapes;
+  }
   GdsReader in(drawing);
   int type = 0, element = 0, l = 0, d = 0;
   std::string data, xy, text;

@@ -1,7 +1,9 @@
 # Result layouts written by the core (output.write_by_core, for layouts of millions of shapes)
 # against the same layouts built in KLayout and saved by it: the batch's voronoi and gauges
-# commands run in this process twice, the second time with output.COMPACT_MAX_SHAPES at zero.
-#   klayout -b -r tests/klayout/check_core_oasis.py -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd work=DIR
+# commands (and select, with markers: windows.oas) run in this process twice, the second time
+# with output.COMPACT_MAX_SHAPES at zero.
+#   klayout -b -r tests/klayout/check_core_oasis.py -rd input=FILE -rd layer=L/D [-rd cell=NAME]
+#           [-rd markers=SPEC] -rd work=DIR
 # input=rings draws its own layout first: boxes with one and two holes, and a triangle.
 # Both files must hold, layer by layer (layer, datatype, name), the same paths (ends and width;
 # KLayout's compacting writer keeps one of identical paths, as where a sandwich and a width gauge
@@ -52,8 +54,8 @@ if g.get("input") == "rings":
 
 
 def run(out):
-    for cmd in ("voronoi", "gauges"):
-        args = dict(cmd=cmd, input=g["input"], layer=g["layer"], cell=g.get("cell"), out=out)
+    for cmd in ("voronoi", "gauges") + (("select",) if g.get("markers") else ()):
+        args = dict(cmd=cmd, input=g["input"], layer=g["layer"], cell=g.get("cell"), out=out, markers=g.get("markers"))
         expect(batch.main(args) == 0, "%s in %s" % (cmd, out))
 
 
@@ -85,7 +87,7 @@ core = os.path.join(work, "core")
 run(default)
 output.COMPACT_MAX_SHAPES = 0
 run(core)
-for name in ("voronoi.oas", "gauges.oas"):
+for name in ("voronoi.oas", "gauges.oas") + (("windows.oas",) if g.get("markers") else ()):
     dbu_k, cell_k, a = content(os.path.join(default, name))
     dbu_c, cell_c, b = content(os.path.join(core, name))
     expect(abs(dbu_k - dbu_c) < 1e-12 and cell_k == cell_c, "%s: dbu %r/%r, cell %s/%s" % (name, dbu_k, dbu_c, cell_k, cell_c))

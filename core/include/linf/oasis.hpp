@@ -8,6 +8,7 @@
 // A plain subset of OASIS 1.0: no name tables, positions relative to the previous shape's,
 // records deflated in CBLOCKs; KLayout reads it as the same shapes (tests/klayout/check_core_oasis.py).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -48,10 +49,18 @@ struct LayerName {
 // A polygon as outlines without holes (each hole joined to its outline by a cut line).
 std::vector<Ring> outlines(const Polygon& p);
 
-// The input polygons on (layer, datatype), then the drawing's paths and texts, into `path`.
-// Returns the number of shapes written. Throws std::runtime_error on an unreadable drawing.
+// Boxes (x1, y1, x2, y2) on one layer/datatype: the selection's windows.
+struct LayerBoxes {
+  int layer = 0, datatype = 0;
+  std::vector<std::array<std::int64_t, 4>> boxes;
+};
+
+// The input polygons on (layer, datatype), then the boxes, then the drawing's paths and texts
+// (none for an empty name), into `path`. Returns the number of shapes written. Throws
+// std::runtime_error on an unreadable drawing.
 std::size_t oasis_from_drawing(const std::string& drawing, const FlatPolygons& input, int layer,
                                int datatype, const std::vector<LayerName>& names, double dbu,
-                               const std::string& cell, const std::string& path);
+                               const std::string& cell, const std::string& path,
+                               const std::vector<LayerBoxes>& boxes = {});
 
 }  // namespace linf

@@ -374,9 +374,16 @@ def write_selection(inp, sel):
     """windows.csv, windows.oas, stats.json, report.html (the report database: write_windows_report)."""
     t0 = time.perf_counter()
     selection_output.write_csv(sel.chosen, sel.gauges, inp.file("windows.csv"), inp.dbu)
-    res, top = inp.result_layout()
-    selection_output.add_layer(res, top, sel.chosen, inp.layer, inp.datatype)
-    output.save(res, inp.file("windows.oas"))
+    if output.needs_core_writer(len(inp.polygons) + len(sel.chosen.windows)):
+        info = selection_output.window_layer_info(inp.layer, inp.datatype, sel.chosen)
+        output.write_by_core(inp.file("windows.oas"), None, inp.polygons, inp.layer, inp.datatype,
+                             [(info.layer, info.datatype, info.name)], inp.dbu, inp.cell.name,
+                             [(info.layer, info.datatype, selection_output.window_boxes(sel.chosen, inp.dbu))])
+    else:
+        res, top = inp.result_layout()
+        selection_output.add_layer(res, top, sel.chosen, inp.layer, inp.datatype)
+        output.save(res, inp.file("windows.oas"))
+        del res, top  # a copy of the layer: gone before the picture makes its own
     stats = selection_output.stats(sel.study, inp.dbu, sel.chosen, sel.similarity)
     stats.update(input=inp.path, cell=inp.cell.name, layer=inp.name, gauges=len(sel.gauges), max_norm=sel.max_norm,
                  marker_source=sel.markers.summary(), pitch_source="given" if sel.pitch_given else "estimated")

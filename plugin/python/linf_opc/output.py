@@ -46,11 +46,13 @@ def needs_core_writer(shapes):
     return shapes > COMPACT_MAX_SHAPES
 
 
-def write_by_core(path, drawing, polygons, layer, datatype, names, dbu, cell):
-    """A result layout as OASIS straight from the core's GDSII drawing (paths and texts) and the
-    input polygons, for layouts of millions of shapes, which KLayout would hold in memory
-    while it saved them. names: [(layer, datatype, pya.LayerInfo name)]. Returns the shape count."""
-    return core.oasis_from_drawing(drawing, core_input(polygons), layer, datatype, names, dbu, cell, path)
+def write_by_core(path, drawing, polygons, layer, datatype, names, dbu, cell, boxes=()):
+    """A result layout as OASIS straight from the core's GDSII drawing (paths and texts; None for
+    none), boxes [(layer, datatype, array('q') x1, y1, x2, y2 a box)] and the input polygons,
+    for layouts of millions of shapes, which KLayout would hold in memory while it saved them.
+    names: [(layer, datatype, pya.LayerInfo name)]. Returns the shape count."""
+    return core.oasis_from_drawing(drawing or "", core_input(polygons), layer, datatype, names, dbu, cell, path,
+                                   list(boxes))
 
 
 def write_csv(diagram, path, dbu):

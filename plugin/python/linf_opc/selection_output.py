@@ -1,6 +1,7 @@
 """Writing a selection Study: windows.csv, a windows layer, report-database items, stats.json."""
 import csv
 import re
+from array import array
 from xml.sax import saxutils
 
 import pya
@@ -28,6 +29,16 @@ def write_csv(run, gauges, path, dbu):
             g = gauges[gi]
             w.writerow([i + 1] + ["%.6f" % (v * dbu) for v in (x1, y1, x2, y2)] +
                        [g.rank, g.type, "%.6f" % (g.score * dbu), len(ms)])
+
+
+def window_boxes(run, dbu):
+    """The run's windows on the DBU grid, as add_layer puts them into a layout: array('q')
+    x1, y1, x2, y2 a window."""
+    out = array("q")
+    for x1, y1, x2, y2, gi, ms in run.windows:
+        b = pya.DBox(x1 * dbu, y1 * dbu, x2 * dbu, y2 * dbu).to_itype(dbu)
+        out.extend((b.left, b.bottom, b.right, b.top))
+    return out
 
 
 def add_layer(layout, cell, run, layer, datatype):
