@@ -746,6 +746,23 @@ PYBIND11_MODULE(linf_opc_core, m) {
       py::arg("widths"), py::arg("spaces"), "The same with flat array('d') of cd, extension pairs.");
   m.def("estimate_pitch", &estimate_pitch, py::arg("widths"), py::arg("spaces"),
         "Pitch from gauges: weighted median width + weighted median space; pairs are (cd, extension).");
+  m.def(
+      "estimate_pitch_of_gauges",
+      [](const py::buffer& cd, const py::buffer& extension, const py::buffer& types) {
+        // The gauge table's columns read in place: no Python copy of a full layer's pairs.
+        const Column<double> c = column_of<double>(cd, "cd"), e = column_of<double>(extension, "extension");
+        const Column<std::int32_t> t = column_of<std::int32_t>(types, "types");
+        if (e.size() != c.size() || t.size() != c.size()) throw py::value_error("one value a gauge in every column");
+        std::vector<std::pair<double, double>> widths, spaces;
+        for (std::size_t i = 0; i < c.size(); ++i) {
+          if (t[i] == 0) widths.push_back({c[i], e[i]});
+          else if (t[i] == 1) spaces.push_back({c[i], e[i]});
+        }
+        return estimate_pitch(widths, spaces);
+      },
+      py::arg("cd"), py::arg("extension"), py::arg("types"),
+      "The same from the gauges' columns (one-dimensional buffers, strided views too): cd, extension\n"
+      "(doubles) and type (int32: 0 internal, the widths; 1 external, the spaces; others ignored).");
 
   m.def(
       "farthest_voronoi",

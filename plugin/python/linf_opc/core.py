@@ -34,6 +34,7 @@ select_windows = _call("select_windows")
 cover_points = _call("cover_points")
 free_windows = _call("free_windows")
 estimate_pitch = _call("estimate_pitch")
+estimate_pitch_of_gauges = _call("estimate_pitch_of_gauges")
 farthest_voronoi = _call("farthest_voronoi")
 cgal_construction_seconds = _call("cgal_construction_seconds")
 

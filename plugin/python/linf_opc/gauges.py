@@ -102,6 +102,11 @@ class GaugeTable(Sequence):
         """The type of each gauge as its index in TYPES, rank order."""
         return self._ints[12::13]
 
+    def cd_extension_type(self):
+        """(cd, tiebreak, type index in TYPES): three columns, rank order, as views into the
+        table (no copy)."""
+        return self._reals[6::10], self._reals[9::10], self._ints[12::13]
+
     def cd_extension(self, type_name):
         """array('d'): cd, tiebreak pairs of the gauges of one type, rank order."""
         k = TYPES.index(type_name)

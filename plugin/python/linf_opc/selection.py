@@ -21,8 +21,8 @@ MODE_NAMES = {"A": "marker centre strictly inside the window", "B": "marker enti
 
 def pitch_of(gauges):
     """Estimated pitch in DBU (core.estimate_pitch: weighted median width + space)."""
-    if hasattr(gauges, "cd_extension"):  # a GaugeTable: flat columns, no tuple per gauge
-        return core.estimate_pitch(gauges.cd_extension("internal"), gauges.cd_extension("external"))
+    if hasattr(gauges, "cd_extension"):  # a GaugeTable: its columns read in place by the core
+        return core.estimate_pitch_of_gauges(*gauges.cd_extension_type())
     widths = [(g.cd, g.tiebreak) for g in gauges if g.type == "internal"]
     spaces = [(g.cd, g.tiebreak) for g in gauges if g.type == "external"]
     return core.estimate_pitch(widths, spaces)

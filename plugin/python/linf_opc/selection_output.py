@@ -1,6 +1,8 @@
 """Writing a selection Study: windows.csv, a windows layer, report-database items, stats.json."""
 import csv
 import re
+import shutil
+import tempfile
 from array import array
 from xml.sax import saxutils
 
@@ -101,10 +103,16 @@ def _name(n):
 def write_report(path, study, gauges, dbu, cell_name, source, generator, markers=None, split=None):
     """The report database report() and report_split() fill in a new database, written directly
     as KLayout saves it (tested: the same bytes): through KLayout's API each item cost ~50 us,
-    seconds on a layer with thousands of markers."""
+    seconds on a layer with thousands of markers. The items go to a temporary file first, as the
+    tags they use come before them in the file (a full layer's items are hundreds of MB)."""
+    with tempfile.TemporaryFile("w+", encoding="utf-8") as items:
+        _write_report(path, items, study, gauges, dbu, cell_name, source, generator, markers, split)
+
+
+def _write_report(path, items, study, gauges, dbu, cell_name, source, generator, markers, split):
     esc = saxutils.escape
     user = ["gauge_rank", "type", "score", "markers_covered"]
-    plain, items = [], []
+    plain = []
     cell = esc(cell_name)
 
     def item(tags, category, values):
@@ -113,8 +121,8 @@ def write_report(path, study, gauges, dbu, cell_name, source, generator, markers
                 plain.append(t)
         # KLayout lists an item's tags in the order the tags were made.
         tags = sorted(tags, key=plain.index)
-        items.append(report_db.item_head(tags, category, cell) + "".join("    <value>%s</value>\n" % v for v in values)
-                     + report_db.ITEM_END)
+        items.write(report_db.item_head(tags, category, cell) + "".join("    <value>%s</value>\n" % v for v in values)
+                    + report_db.ITEM_END)
 
     def box(x1, y1, x2, y2):
         return "box: (%s,%s;%s,%s)" % (_g(x1 * dbu), _g(y1 * dbu), _g(x2 * dbu), _g(y2 * dbu))
@@ -158,7 +166,8 @@ def write_report(path, study, gauges, dbu, cell_name, source, generator, markers
         f.writelines(report_db.tag(t) for t in tags)
         f.write(" </tags>\n <categories>\n%s </categories>\n" % "".join(indent(c, 2) for c in cats))
         f.write(report_db.cells(cell_name) + " <items>\n")
-        f.writelines(items)
+        items.seek(0)
+        shutil.copyfileobj(items, f)
         f.write(report_db.END)
 
 
