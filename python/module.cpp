@@ -16,6 +16,7 @@
 #include <pybind11/stl.h>
 
 #include "linf/clips.hpp"
+#include "linf/coverage.hpp"
 #include "linf/csv.hpp"
 #include "linf/diagram.hpp"
 #include "linf/engine.hpp"
@@ -502,6 +503,29 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "as in voronoi_polygons, and gds_cell. gauges_csv: also write the gauges there (gauges.csv, micrometres).\n"
       "columns: write the two column blocks into this file (reals for every gauge, then ints) instead of bytes:\n"
       "'gauges' is then {'count', 'file', 'reals': None, 'ints': None, 'paths'}, for the caller to map.");
+
+  m.def(
+      "picture_coverage",
+      [](const py::object& polys, int cells_across, double large) {
+        const LayerInput in(polys);
+        Coverage c;
+        {
+          py::gil_scoped_release unlocked;
+          c = coverage(in.flat(), cells_across, large);
+        }
+        py::dict d;
+        d["x0"] = c.x0, d["y0"] = c.y0, d["cell"] = c.cell, d["nx"] = c.nx, d["ny"] = c.ny;
+        d["cells"] = py::bytes(reinterpret_cast<const char*>(c.cells.data()), c.cells.size());
+        d["large"] = py::make_tuple(
+            py::bytes(reinterpret_cast<const char*>(c.large.points.data()), c.large.points.size() * 8),
+            py::bytes(reinterpret_cast<const char*>(c.large.rings.data()), c.large.rings.size() * 8));
+        return d;
+      },
+      py::arg("polygons"), py::arg("cells_across"), py::arg("large") = 2.0,
+      "A layer at a picture's scale, without a copy of it: {'x0', 'y0', 'cell', 'nx', 'ny': the grid, square\n"
+      "cells from the layer box's lower left corner, cells_across along its longer side; 'cells': bytes, nx a\n"
+      "row from the bottom, 1 where the box of a polygon narrower than `large` cells (in width or height)\n"
+      "touches; 'large': the other polygons as flat (points, rings) bytes of int64}.");
 
   m.def(
       "write_clip_library",

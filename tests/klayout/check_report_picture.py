@@ -4,7 +4,10 @@
 # - report.html holds the picture as an embedded PNG (a data: URI, nothing else referenced) and
 #   no SVG layout picture;
 # - the PNG is 700 x 700, and not blank: its rows hold the layer's grey, a marker's red and a
-#   window's blue (decoded here with zlib: PNG filters undone for 8-bit RGB(A)).
+#   window's blue (decoded here with zlib: PNG filters undone for 8-bit RGB(A));
+# - the layer drawn at a picture's scale (picture.draw_layer) on coarse and fine grids covers
+#   every shape, draws nothing further than three cells from one, and draws the large shapes
+#   as they are.
 import base64
 import os
 import re
@@ -16,7 +19,9 @@ repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(repo, "build"))
 sys.path.insert(0, os.path.join(repo, "plugin", "python"))
 
-from linf_opc import batch, picture, report  # noqa: E402
+import pya  # noqa: E402
+
+from linf_opc import batch, layout, picture, report  # noqa: E402
 
 work = globals().get("work") or "/tmp/linf_report_picture"
 failures = []
@@ -80,6 +85,23 @@ if uris:
     for name, colour in (("layer", picture.LAYER_FILL), ("marker", picture.MARKER_FRAME),
                          ("window", picture.WINDOW_FRAME)):
         expect(rgb(colour) in colours, "the %s colour %s is in the picture" % (name, rgb(colour)))
+
+sample = pya.Layout()
+sample.read(os.path.join(repo, "samples", "metal.oas"))
+region = pya.Region(sample.top_cells()[0].begin_shapes_rec(sample.find_layer(1, 0))).merged()
+for across in (12, 60, 4000):
+    ly = pya.Layout()
+    shapes = ly.create_cell("T").shapes(ly.layer(1, 0))
+    picture.draw_layer(shapes, layout.polygons_of(region), across)
+    drawn = pya.Region(shapes)
+    side = max(region.bbox().width(), region.bbox().height()) / across
+    large = [p for p in region.each() if min(p.bbox().width(), p.bbox().height()) >= 2 * side]
+    polygons = [s.polygon for s in shapes.each()]
+    expect((region - drawn).is_empty(), "%d cells across: every shape is drawn" % across)
+    expect((drawn - region.sized(int(3 * side) + 1)).is_empty(),
+           "%d cells across: nothing drawn further than three cells from a shape" % across)
+    expect(all(p in polygons for p in large), "%d cells across: the large shapes as they are" % across)
+    print("%d cells across: %d shapes drawn for %d (%d large)" % (across, drawn.count(), region.count(), len(large)))
 
 print("report picture check %s" % ("FAILED" if failures else "passed"))
 sys.exit(1 if failures else 0)

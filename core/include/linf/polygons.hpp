@@ -29,6 +29,7 @@ class PolygonIndex {
   // or a coordinate lies outside +-2^30 (intersections must stay representable; boxes are 32-bit).
   explicit PolygonIndex(const FlatPolygons& in);
   std::size_t size() const { return first_ring_.size() - 1; }
+  std::size_t points(std::size_t i) const { return first_point_[i + 1] - first_point_[i]; }
   Polygon polygon(std::size_t i) const;
   // Its outer ring's box; {0, 0, 0, 0} for a polygon of no points.
   const IntBox& box(std::size_t i) const { return boxes_[i]; }

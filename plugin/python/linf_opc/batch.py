@@ -391,7 +391,7 @@ def write_selection(inp, sel):
     chosen = sel.study.runs[(stats["chosen"]["mode"], stats["chosen"]["size"])]
     png = None
     if not html_report.svg_picture_fits(inp.polygons, chosen, sel.study.markers):
-        png = layout_picture.picture(inp.region, inp.dbu, sel.study.markers, chosen.windows)
+        png = layout_picture.picture(inp.polygons, inp.dbu, sel.study.markers, chosen.windows)
     html_report.write(inp.file("report.html"), "Pattern selection: %s %s" % (os.path.basename(inp.path), inp.name),
                       stats, sel.study, inp.polygons, inp.dbu, png)
     stats["seconds"]["write"] = time.perf_counter() - t0

@@ -101,7 +101,7 @@ def write(path, title, stats, study, polygons, dbu, png=None):
     sizes = sorted(study.heuristic)
     modes = sorted(set(m for m, k in study.runs))
     cov = {m: [study.runs[(m, k)].covered if (m, k) in study.runs else None for k in sizes] for m in modes}
-    use = {m: [len(study.runs[(m, k)].used) if (m, k) in study.runs else None for k in sizes] for m in modes}
+    use = {m: [study.runs[(m, k)].n_used if (m, k) in study.runs else None for k in sizes] for m in modes}
     tim = {m: [study.runs[(m, k)].seconds if (m, k) in study.runs else None for k in sizes] for m in modes}
     chosen = study.runs[(stats["chosen"]["mode"], stats["chosen"]["size"])]
     parts = ["<!DOCTYPE html><html><head><meta charset='utf-8'><title>%s</title>" % html.escape(title),

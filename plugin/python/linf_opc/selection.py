@@ -81,6 +81,10 @@ class Run:
         self.types = types
 
     @property
+    def n_used(self):
+        return len(self._used)
+
+    @property
     def used(self):
         """The used gauges, rank order, made on each call: twelve runs of a full layer's windows
         would otherwise hold a Gauge record per window each to the end of the flow."""
@@ -96,7 +100,7 @@ class Run:
 
     def row(self, dbu):
         """The columns of Tables 5.2-5.4 (T in seconds, the core's selection time)."""
-        gu, gf = len(self._used), self.n_failed
+        gu, gf = self.n_used, self.n_failed
         return {"mode": self.mode, "W_s": "%dx%d" % (self.size, self.size), "side_um": round(self.side * dbu, 6),
                 "M_c": self.covered, "markers": self.n_markers, "G_u": gu, "r_u": overall(self.used_by_type),
                 "G_f": gf, "r_f": overall(self.failed_by_type), "redundant": self.redundant,
@@ -108,7 +112,7 @@ class Run:
         return {"used": by_type(self.used_by_type, self.types), "failed": by_type(self.failed_by_type, self.types)}
 
     def representatives(self):
-        total = len(self._used)
+        total = self.n_used
         return [{"type": t, "S_n": s, "N_g": n, "similarity_pct": round(100.0 * n / total, 4)}
                 for t, s, n in classes(self.used)]
 
