@@ -1,11 +1,11 @@
 #include "linf/sites.hpp"
 
-#include "linf/box_tree.hpp"
-
 #include <boost/polygon/polygon.hpp>
 #include <algorithm>
 #include <map>
 #include <stdexcept>
+
+#include "linf/box_tree.hpp"
 
 namespace linf {
 namespace bp = boost::polygon;
@@ -129,27 +129,22 @@ std::vector<std::size_t> merge_groups(const PolygonIndex& ix, std::size_t size, 
       });
   }
   // Counting sort by root, stable: clusters in the order of their least polygon.
-  Paged<std::int32_t>& start = parent;  // reused: the roots first, then where each cluster starts
-  Paged<std::int32_t> count;
-  count.resize(n);
-  for (std::size_t i = 0; i < n; ++i) ++count[std::size_t(root(std::int32_t(i)))];
-  for (std::size_t i = 0; i < n; ++i) start[i] = root(std::int32_t(i));  // every parent is its root now
+  for (std::size_t i = 0; i < n; ++i) parent[i] = root(std::int32_t(i));  // each points at its root
+  Paged<std::int32_t> place;  // a cluster's size, at its root; then where its next polygon goes
+  place.resize(n);
+  for (std::size_t i = 0; i < n; ++i) ++place[std::size_t(parent[i])];
   std::vector<std::size_t> ends;
   std::size_t at = 0, group = 0;
-  ids.resize(n);
-  {
-    Paged<std::int32_t> place;
-    place.resize(n);
-    for (std::size_t r = 0; r < n; ++r) {
-      if (count[r] == 0) continue;
-      const std::size_t c = std::size_t(count[r]);
-      if (group > 0 && group + c > size) ends.push_back(at), group = 0;
-      place[r] = std::int32_t(at);
-      at += c, group += c;
-    }
-    if (group > 0) ends.push_back(at);
-    for (std::size_t i = 0; i < n; ++i) ids[std::size_t(place[std::size_t(start[i])]++)] = std::int32_t(i);
+  for (std::size_t r = 0; r < n; ++r) {
+    if (place[r] == 0) continue;
+    const std::size_t c = std::size_t(place[r]);
+    if (group > 0 && group + c > size) ends.push_back(at), group = 0;
+    place[r] = std::int32_t(at);
+    at += c, group += c;
   }
+  if (group > 0) ends.push_back(at);
+  ids.resize(n);
+  for (std::size_t i = 0; i < n; ++i) ids[std::size_t(place[std::size_t(parent[i])]++)] = std::int32_t(i);
   return ends;
 }
 
