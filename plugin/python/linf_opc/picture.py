@@ -9,7 +9,6 @@ they are. A copy of a layer of millions of shapes in the picture's layout would 
 import math
 import os
 import tempfile
-from array import array
 
 import pya
 
@@ -57,9 +56,7 @@ def draw_layer(shapes, polygons, cells_across=GRID):
             shapes.insert(pya.Box(math.floor(x0 + (a - row) * cell), math.floor(y0 + j * cell),
                                   math.ceil(x0 + (b - row) * cell), math.ceil(y0 + (j + 1) * cell)))
             i = b - row
-    large = Polygons()
-    large.points, large.rings = array("q", c["large"][0]), array("q", c["large"][1])
-    for outer, holes in large:
+    for outer, holes in Polygons.from_flat(*c["large"]):
         p = pya.Polygon([pya.Point(x, y) for x, y in outer])
         for h in holes:
             p.insert_hole([pya.Point(x, y) for x, y in h])

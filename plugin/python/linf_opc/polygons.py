@@ -22,6 +22,14 @@ class Polygons:
             out.add(outer, holes)
         return out
 
+    @classmethod
+    def from_flat(cls, points, rings):
+        """From the two flat arrays (or bytes of int64), as the core gives them back."""
+        out = cls()
+        out.points, out.rings = array("q", points), array("q", rings)
+        out._count = sum(1 for c in out.rings if c >= 0)
+        return out
+
     def add(self, outer, holes=()):
         self._ring(outer, 1)
         for h in holes:
