@@ -17,6 +17,7 @@ from . import core
 
 SETS = ("calibration", "verification")
 
+
 class Pattern:
     """A selected window: box (x1, y1, x2, y2) in DBU, its gauge (gauges[index], made when asked
     for: a full layer's split has hundreds of thousands of patterns, and a Gauge each would be
