@@ -9,15 +9,8 @@
 
 namespace linf {
 
-namespace {
 namespace bp = boost::polygon;
 using BPoint = bp::point_data<int>;
-
-Ring box_ring(const std::array<std::int64_t, 4>& b) {
-  return {{b[0], b[1]}, {b[2], b[1]}, {b[2], b[3]}, {b[0], b[3]}};
-}
-
-}  // namespace
 
 std::size_t write_clip_library(const std::string& path, double dbu, const FlatPolygons& layer,
                                const ClipLayers& l, const std::vector<Clip>& clips) {

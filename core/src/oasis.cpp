@@ -256,6 +256,8 @@ class GdsReader {
 
 std::vector<Ring> outlines(const Polygon& p) { return without_holes(p); }
 
+Ring box_ring(const std::array<std::int64_t, 4>& b) { return {{b[0], b[1]}, {b[2], b[1]}, {b[2], b[3]}, {b[0], b[3]}}; }
+
 std::size_t oasis_from_drawing(const std::string& drawing, const FlatPolygons& input, int layer,
                                int datatype, const std::vector<LayerName>& names, double dbu,
                                const std::string& cell, const std::string& path,
@@ -267,7 +269,7 @@ std::size_t oasis_from_drawing(const std::string& drawing, const FlatPolygons& i
   for (std::size_t i = 0; i < ix.size(); ++i)
     for (const Ring& r : without_holes(ix.polygon(i))) w.polygon(layer, datatype, r), ++shapes;
   for (const LayerBoxes& lb : boxes)
-    for (const auto& b : lb.boxes) w.polygon(lb.layer, lb.datatype, {{b[0], b[1]}, {b[2], b[1]}, {b[2], b[3]}, {b[0], b[3]}}), ++shapes;
+    for (const auto& b : lb.boxes) w.polygon(lb.layer, lb.datatype, box_ring(b)), ++shapes;
   if (drawing.empty()) {
     w.close();
     return shapes;

@@ -46,6 +46,9 @@ struct LayerName {
   std::string name;
 };
 
+// A box (x1, y1, x2, y2) as the outline of a polygon.
+Ring box_ring(const std::array<std::int64_t, 4>& b);
+
 // A polygon as outlines without holes (each hole joined to its outline by a cut line).
 std::vector<Ring> outlines(const Polygon& p);
 
