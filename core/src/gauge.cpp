@@ -203,9 +203,14 @@ std::vector<bool> redundant(const Sites& s, const Stretches& all, const std::vec
   auto vertices = [&](const Stretch& st) { return int(s.sites[st.a].is_point()) + int(s.sites[st.b].is_point()); };
   auto rank = [&](const Stretch& st) { return (st.path.size() == 1 ? 4 : 0) + vertices(st); };
   // (a, b, stretch) sorted: a flat index, where a map would cost more than the stretches.
-  std::vector<std::tuple<std::int32_t, std::int32_t, std::uint32_t>> by_pair;
+  struct ByPair {
+    std::int32_t a, b;
+    std::uint32_t i;
+    bool operator<(const ByPair& o) const { return std::tie(a, b, i) < std::tie(o.a, o.b, o.i); }
+  };
+  Paged<ByPair> by_pair;
   for (std::size_t i = 0; i < all.size(); ++i)
-    if (ok[i]) by_pair.emplace_back(all[i].a, all[i].b, std::uint32_t(i));
+    if (ok[i]) by_pair.push_back({all[i].a, all[i].b, std::uint32_t(i)});
   std::sort(by_pair.begin(), by_pair.end());
   auto related = [&](std::int32_t x) {
     const Site& t = s.sites[x];
@@ -220,9 +225,9 @@ std::vector<bool> redundant(const Sites& s, const Stretches& all, const std::vec
       for (std::int32_t y : related(st.b)) {
         if (x < 0 || y < 0) continue;
         const std::int32_t lo = std::min(x, y), hi = std::max(x, y);
-        for (auto it = std::lower_bound(by_pair.begin(), by_pair.end(), std::make_tuple(lo, hi, 0u));
-             it != by_pair.end() && std::get<0>(*it) == lo && std::get<1>(*it) == hi; ++it) {
-          const Stretch other = all[std::get<2>(*it)];
+        for (auto it = std::lower_bound(by_pair.begin(), by_pair.end(), ByPair{lo, hi, 0u});
+             it != by_pair.end() && it->a == lo && it->b == hi; ++it) {
+          const Stretch other = all[it->i];
           if (rank(other) < rank(st) && least(other) <= c + kTol) out[i] = true;
         }
       }
@@ -250,19 +255,30 @@ Gauge plain_gauge(const Stretch& st, std::int32_t index) {
 // The external stretches at each site, in compressed rows.
 class ExternalAt {
  public:
-  void build(std::size_t sites, const std::vector<std::pair<std::int32_t, std::int32_t>>& site_stretch) {
-    start_.assign(sites + 1, 0);
-    for (auto& [site, i] : site_stretch) ++start_[site + 1];
+  void build(std::size_t sites, const Stretches& all) {
+    start_.resize(sites + 1);
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const Stretch s = all[i];
+      if (s.kind != PieceKind::External) continue;
+      ++start_[std::size_t(s.a) + 1], ++start_[std::size_t(s.b) + 1];
+    }
     for (std::size_t k = 1; k < start_.size(); ++k) start_[k] += start_[k - 1];
-    ids_.resize(site_stretch.size());
-    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (auto& [site, i] : site_stretch) ids_[fill[site]++] = i;
+    ids_.resize(start_[sites]);
+    Paged<std::uint32_t> fill;
+    fill.resize(sites);
+    std::copy(start_.begin(), start_.end() - 1, fill.begin());
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const Stretch s = all[i];
+      if (s.kind != PieceKind::External) continue;
+      ids_[fill[std::size_t(s.a)]++] = std::int32_t(i), ids_[fill[std::size_t(s.b)]++] = std::int32_t(i);
+    }
   }
   Span<std::int32_t> of(std::int32_t site) const { return {ids_.data() + start_[site], start_[site + 1] - start_[site]}; }
 
  private:
-  std::vector<std::uint32_t> start_;
-  std::vector<std::int32_t> ids_;
+  // Per site and per external stretch end: a layer's worth, in Paged arrays.
+  Paged<std::uint32_t> start_;
+  Paged<std::int32_t> ids_;
 };
 
 // Sandwich, comb and T gauges on one internal stretch E_y between edges a and b of a shape.
@@ -393,10 +409,11 @@ Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& op
   const std::vector<bool> extra = redundant(sites, r.stretches, ok);
   for (std::int32_t i = 0; i < n; ++i) ok[i] = ok[i] && !extra[i];
   // The typical width decides which spaces are pattern (see GaugeOptions::space_limit_widths).
-  std::vector<std::pair<double, double>> widths;
+  Paged<Weighted> widths;
   for (std::int32_t i = 0; i < n; ++i)
     if (ok[i] && r.stretches[i].kind == PieceKind::Internal) widths.push_back({2 * least(r.stretches[i]), r.stretches[i].length});
-  r.typical_width = weighted_median(widths);
+  r.typical_width = weighted_median_in_place(widths);
+  widths = Paged<Weighted>();
   r.space_limit = opt.space_limit_widths > 0 && r.typical_width > 0 ? opt.space_limit_widths * r.typical_width : kNone;
   for (std::int32_t i = 0; i < n; ++i)
     if (ok[i] && r.stretches[i].kind != PieceKind::Internal && 2 * least(r.stretches[i]) > r.space_limit + kTol)
@@ -406,16 +423,7 @@ Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& op
   r.stretches.keep_only(ok);
   const std::int32_t m = std::int32_t(r.stretches.size());
   ExternalAt external_at;
-  {
-    std::vector<std::pair<std::int32_t, std::int32_t>> site_stretch;
-    for (std::int32_t i = 0; i < m; ++i) {
-      const Stretch s = r.stretches[i];
-      if (s.kind != PieceKind::External) continue;
-      site_stretch.push_back({s.a, i});
-      site_stretch.push_back({s.b, i});
-    }
-    external_at.build(sites.sites.size(), site_stretch);
-  }
+  external_at.build(sites.sites.size(), r.stretches);
   // Room for the most there can be, reserved at once: pages are committed only as gauges are
   // written, where a vector growing by doubling would hold one and a half times them while it
   // moves (hundreds of MB on a full layer). A stretch gives one plain gauge, an internal one

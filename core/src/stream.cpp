@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -81,7 +82,8 @@ class Runs {
 };
 
 // The runs merged in join_order; each owner pair's pieces, from every run, handed to `pair`.
-// A buffer of 1024 pieces (64 KB) a run.
+// A buffer a run, of 1024 pieces (64 KB) while the buffers together stay under 16 MB, fewer
+// (down to 64) past that: a run is a tile, and a layer of millions of shapes has thousands.
 template <class Pair>
 void merge(const Runs& runs, const Pair& pair) {
   struct Cursor {
@@ -91,8 +93,10 @@ void merge(const Runs& runs, const Pair& pair) {
   };
   std::vector<Cursor> cs;
   for (const Runs::Run& r : runs.runs()) cs.push_back({r.first, r.end, {}, 0});
+  const std::size_t each =
+      std::clamp<std::size_t>((std::size_t(16) << 20) / sizeof(Piece) / std::max<std::size_t>(1, cs.size()), 64, 1024);
   auto fill = [&](Cursor& c) {
-    const std::size_t n = std::size_t(std::min<std::uint64_t>(1024, c.end - c.next));
+    const std::size_t n = std::size_t(std::min<std::uint64_t>(each, c.end - c.next));
     c.buf.resize(n);
     if (n) runs.read(c.next, n, c.buf.data());
     c.next += n, c.at = 0;

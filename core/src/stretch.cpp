@@ -17,11 +17,17 @@ namespace linf {
 namespace {
 
 // Piece ends meet at exactly computed vertices up to rounding; a 1/1024 DBU grid joins them.
-using Key = std::pair<long long, long long>;
+// (A struct, not a std::pair: the held ends and point stretches live in Paged arrays, which
+// take only trivially copyable values.)
+struct Key {
+  long long x, y;
+  bool operator==(const Key& o) const { return x == o.x && y == o.y; }
+  bool operator<(const Key& o) const { return x < o.x || (x == o.x && y < o.y); }
+};
 Key key_of(const Vec2& v) { return {std::llround(v.x * 1024.0), std::llround(v.y * 1024.0)}; }
 
 struct KeyHash {
-  std::size_t operator()(const Key& k) const { return std::hash<long long>()(k.first * 1000003LL ^ k.second); }
+  std::size_t operator()(const Key& k) const { return std::hash<long long>()(k.x * 1000003LL ^ k.y); }
 };
 
 double dist(const Vec2& a, const Vec2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
@@ -146,12 +152,18 @@ struct End {
   PieceKind kind;
 };
 
+// An end at a vertex on a part's frame, held until every part is in.
+struct Held {
+  Key key;
+  End end;
+};
+
 // The pairs meeting at one vertex (the piece ends `end(0..n-1)` sharing one key) that `keep`
 // accepts and that have no chain. Nothing here depends on the order of the ends: a diagram
 // that comes in parts gives the same point stretches as a whole one.
 template <class EndAt, class HasChain>
 void vertex(const Key& key, std::size_t n, const EndAt& end, const Sites& sites, const StretchFilter& keep,
-            const HasChain& has_chain, std::vector<std::int32_t>& owners, std::vector<PointStretch>& out) {
+            const HasChain& has_chain, std::vector<std::int32_t>& owners, Paged<PointStretch>& out) {
   if (n < 2) return;
   // Where the ends differ by rounding, the greatest (x, y, clearance) gives the vertex.
   End top = end(0);
@@ -200,8 +212,8 @@ std::vector<std::uint32_t> sorted_ends(const Piece* pieces, std::size_t n) {
 // Vertices where three or more sites meet: every pair of them that `keep` accepts and that has
 // no chain, in the order of the vertices.
 template <class HasChain>
-std::vector<PointStretch> meets(const Diagram& d, const StretchFilter& keep, const HasChain& has_chain) {
-  std::vector<PointStretch> out;
+Paged<PointStretch> meets(const Diagram& d, const StretchFilter& keep, const HasChain& has_chain) {
+  Paged<PointStretch> out;
   const Piece* pieces = d.pieces.data();
   const std::vector<std::uint32_t> ends = sorted_ends(pieces, d.pieces.size());
   std::vector<std::int32_t> owners;
@@ -219,7 +231,7 @@ std::vector<PointStretch> meets(const Diagram& d, const StretchFilter& keep, con
 std::pair<std::int32_t, std::int32_t> pair_of(const Piece& p) { return {std::min(p.a, p.b), std::max(p.a, p.b)}; }
 
 // Point stretches go after the chains, in vertex order.
-void add_points(const std::vector<PointStretch>& points, Stretches& out) {
+void add_points(const Paged<PointStretch>& points, Stretches& out) {
   for (const PointStretch& m : points) {
     out.open(m.a, m.b, m.kind);
     out.add(m.at, m.clearance);
@@ -326,8 +338,9 @@ struct StretchStream::Impl {
   const Sites& sites;
   StretchFilter keep;
   Stretches out;
-  std::vector<PointStretch> points;  // from complete vertices; chains not yet known everywhere
-  std::vector<std::pair<Key, End>> held;  // ends at vertices on a part's frame
+  // Both grow with the layer (a few per wire): in Paged arrays, as the stretches are.
+  Paged<PointStretch> points;  // from complete vertices; chains not yet known everywhere
+  Paged<Held> held;            // ends at vertices on a part's frame
   std::vector<std::int32_t> owners, ids;
   bool pairs_started = false;
 };
@@ -389,16 +402,16 @@ void StretchStream::pair(const Piece* pieces, std::size_t n) {
 
 Stretches StretchStream::finish() {
   Impl& m = *impl_;
-  std::sort(m.held.begin(), m.held.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::sort(m.held.begin(), m.held.end(), [](const Held& x, const Held& y) { return x.key < y.key; });
   auto none = [](std::int32_t, std::int32_t) { return false; };
   for (std::size_t g0 = 0; g0 < m.held.size();) {
     std::size_t g1 = g0 + 1;
-    while (g1 < m.held.size() && m.held[g1].first == m.held[g0].first) ++g1;
-    vertex(m.held[g0].first, g1 - g0, [&](std::size_t e) { return m.held[g0 + e].second; }, m.sites, m.keep, none,
+    while (g1 < m.held.size() && m.held[g1].key == m.held[g0].key) ++g1;
+    vertex(m.held[g0].key, g1 - g0, [&](std::size_t e) { return m.held[g0 + e].end; }, m.sites, m.keep, none,
            m.owners, m.points);
     g0 = g1;
   }
-  std::vector<std::pair<Key, End>>().swap(m.held);
+  m.held = Paged<Held>();
   // The chains are in pair order: a pair has one when a stretch opens with it.
   const Stretches& st = m.out;
   const std::size_t chains = st.size();
@@ -412,9 +425,13 @@ Stretches StretchStream::finish() {
     }
     return lo < chains && st[lo].a == a && st[lo].b == b;
   };
-  m.points.erase(std::remove_if(m.points.begin(), m.points.end(), [&](const PointStretch& p) { return has_chain(p.a, p.b); }),
-                 m.points.end());
-  std::stable_sort(m.points.begin(), m.points.end(), [](const PointStretch& x, const PointStretch& y) { return x.key < y.key; });
+  m.points.resize(std::size_t(std::remove_if(m.points.begin(), m.points.end(), [&](const PointStretch& p) { return has_chain(p.a, p.b); }) -
+                              m.points.begin()));
+  // Vertex order. A vertex's pairs are distinct and were made in ascending order, so sorting
+  // by (key, a, b) keeps them as a stable sort would, without a stable sort's copy of them.
+  std::sort(m.points.begin(), m.points.end(), [](const PointStretch& x, const PointStretch& y) {
+    return x.key < y.key || (x.key == y.key && std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b));
+  });
   add_points(m.points, m.out);
   return std::move(m.out);
 }

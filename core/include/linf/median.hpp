@@ -1,4 +1,3 @@
-// The weighted median, shared by the gauges' typical width and the pitch estimate.
 #pragma once
 #include <algorithm>
 #include <utility>
@@ -6,17 +5,31 @@
 
 namespace linf {
 
-// The median of (value, weight) pairs by weight: the least value at which the accumulated
-// weight reaches half the total. 0 if there is no weight.
-inline double weighted_median(std::vector<std::pair<double, double>> v) {
+// A value with a weight (a width and the length it runs for). Plain, so that a layer's worth
+// can sit in a Paged array.
+struct Weighted {
+  double value, weight;
+};
+
+// The median of `v` by weight: the least value at which the accumulated weight reaches half
+// the total. 0 if there is no weight. Sorts `v` in place (a layer's widths are too many to copy).
+template <class Range>
+double weighted_median_in_place(Range& v) {
   double total = 0;
-  for (auto& p : v) total += p.second;
+  for (const Weighted& p : v) total += p.weight;
   if (total <= 0) return 0;
-  std::sort(v.begin(), v.end());
+  std::sort(v.begin(), v.end(), [](const Weighted& x, const Weighted& y) { return x.value < y.value; });
   double acc = 0;
-  for (auto& [x, w] : v)
-    if ((acc += w) >= 0.5 * total) return x;
-  return v.back().first;
+  for (const Weighted& p : v)
+    if ((acc += p.weight) >= 0.5 * total) return p.value;
+  return (v.end() - 1)->value;
+}
+
+inline double weighted_median(const std::vector<std::pair<double, double>>& pairs) {
+  std::vector<Weighted> v;
+  v.reserve(pairs.size());
+  for (const auto& [x, w] : pairs) v.push_back({x, w});
+  return weighted_median_in_place(v);
 }
 
 }  // namespace linf
