@@ -1,10 +1,12 @@
 # Speed of the gauge stage (diagram included) against KLayout's own width plus space checks
 # (metrics Square) on the same layer, measured in the same run:
-#   klayout -b -r bench/bench_gauges.py [-rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd t=DBU]
-# Default input: ../shared/data/iccad16/testcase3.oas, 1000/0. The checks use the threshold t
-# (default: 2 x the narrowest width the gauges find), so that they report real work.
-# -rd reach=1 also times the checks at the gauges' own reach: width_check above the widest width
-# and space_check above the widest space the gauges report, what KLayout needs to find them all.
+#   klayout -b -r bench/bench_gauges.py [-rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd t=DBU] [-rd reach=0]
+# Default input: ../shared/data/iccad16/testcase3.oas, 1000/0.
+# The goal's comparison (README, "Which threshold"): the checks at the gauges' own reach,
+# width_check above the widest width and space_check above the widest space the gauges report,
+# what KLayout needs to find every width and space the gauges measure. For reference also at
+# t (default 2 x the narrowest width), where the checks report only the narrowest places.
+# reach=0 leaves the reach out (on a layer with a wide space it takes KLayout minutes).
 import os
 import sys
 import time
@@ -47,10 +49,11 @@ print("input: %s %d/%d cell %s: %d polygons, %d sites, %d gauges"
       % (os.path.basename(path), L, D, cell.name, len(polygons), r.diagram["sites"], len(r.gauges)))
 print("gauges (diagram included): %.2f s (read %.2f, merge %.2f, build %.2f, check %.2f, gauges %.2f)"
       % (t_gauges, t_read, s["merge"], s["build"], s["check"], s["gauges"]))
-print("KLayout width + space checks, t = %d DBU, Square: %.2f s (%d edge pairs)" % (t, t_drc, n_drc))
-print("ratio gauges / (width + space): %.2f (goal: under 1)" % (t_gauges / t_drc))
+print("KLayout width + space checks, t = %d DBU, Square: %.2f s (%d edge pairs: the narrowest places only)"
+      % (t, t_drc, n_drc))
+print("ratio gauges / (width + space at t = %d DBU): %.2f" % (t, t_gauges / t_drc))
 
-if g.get("reach") == "1":
+if g.get("reach") != "0":
     w_max = max(x.cd for x in r.gauges if x.type == "internal")
     s_max = max(x.cd for x in r.gauges if x.type == "external")
     t0 = time.perf_counter()
@@ -60,4 +63,4 @@ if g.get("reach") == "1":
     t_reach = time.perf_counter() - t0
     print("KLayout width + space checks at the gauges' reach (width t = %d, space t = %d DBU): %.2f s (%d edge pairs)"
           % (int(w_max) + 1, int(s_max) + 1, t_reach, n_reach))
-    print("ratio gauges / (width + space at the gauges' reach): %.2f" % (t_gauges / t_reach))
+    print("ratio gauges / (width + space at the gauges' reach): %.2f (goal: under 1)" % (t_gauges / t_reach))

@@ -33,6 +33,19 @@ class GaugeTableColumns(unittest.TestCase):
         with self.assertRaises(IndexError):
             self.table[len(self.rows)]
 
+    def test_counts_and_score_ranges_match_the_rows(self):
+        result = gauges.compute(self.polys)
+        want_n = {t: sum(1 for g in self.rows if g.type == t) for t in gauges.TYPES}
+        want_r = {t: (min(g.score for g in self.rows if g.type == t), max(g.score for g in self.rows if g.type == t))
+                  for t in gauges.TYPES if want_n[t]}
+        for block in (gauges.TALLY_BLOCK, 7, 1):  # one block, and many
+            gauges.TALLY_BLOCK = block
+            try:
+                self.assertEqual(result.counts(), want_n)
+                self.assertEqual(result.score_ranges(), want_r)
+            finally:
+                gauges.TALLY_BLOCK = 1 << 16
+
     def test_spots_match_the_rows(self):
         index = {t: i for i, t in enumerate(gauges.TYPES)}
         x, y, t, n = self.table.spots()

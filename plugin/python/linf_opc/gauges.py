@@ -128,19 +128,31 @@ class Gauges:
         self.seconds = dict(self.diagram["seconds"], total=seconds_total)
 
     def counts(self):
-        types = array("i", self.gauges.type_indices())
-        return {t: types.count(k) for k, t in enumerate(TYPES)}
+        return {t: n for t, (n, lo, hi) in zip(TYPES, self._tally())}
 
     def score_ranges(self):
         """{type: (lowest score, highest score)} in DBU, types that have gauges only."""
-        types = array("i", self.gauges.type_indices())
-        scores = self.gauges.scores()
-        r = {}
-        for k, t in enumerate(TYPES):
-            of_type = list(compress(scores, (c == k for c in types)))
-            if of_type:
-                r[t] = (min(of_type), max(of_type))
-        return r
+        return {t: (lo, hi) for t, (n, lo, hi) in zip(TYPES, self._tally()) if n}
+
+    def _tally(self):
+        """[(count, lowest score, highest score)] per type index, in one pass over the columns a
+        block at a time: a full layer has millions of gauges, and a list of a type's scores
+        would be hundreds of MB."""
+        types, scores = self.gauges.type_indices(), self.gauges.scores()
+        tally = [(0, float("inf"), float("-inf"))] * len(TYPES)
+        block = TALLY_BLOCK
+        for at in range(0, len(self.gauges), block):
+            kinds = array("B", types[at:at + block]).tobytes()
+            values = scores[at:at + block]
+            for k in set(kinds):
+                of_type = list(compress(values, kinds.translate(_ONE_TYPE[k])))
+                n, lo, hi = tally[k]
+                tally[k] = (n + len(of_type), min(lo, min(of_type)), max(hi, max(of_type)))
+        return tally
+
+
+TALLY_BLOCK = 1 << 16
+_ONE_TYPE = [bytes(int(c == k) for c in range(256)) for k in range(len(TYPES))]
 
 
 def columns_file():
