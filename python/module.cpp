@@ -673,14 +673,27 @@ PYBIND11_MODULE(linf_opc_core, m) {
                         : select_windows(sp.data(), sp.size(), mk, side, c);
               seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             }
-            py::list windows;
-            for (const Window& w : s.windows)
-              windows.append(py::make_tuple(w.box.x1, w.box.y1, w.box.x2, w.box.y2, w.gauge, w.markers));
+            // Columns, not a tuple a window: a full layer's study has twelve runs of tens of
+            // thousands of windows each.
+            std::vector<double> boxes;
+            std::vector<std::int32_t> gauges, starts{0}, covered;
+            boxes.reserve(4 * s.windows.size()), gauges.reserve(s.windows.size()), starts.reserve(s.windows.size() + 1);
+            for (const Window& w : s.windows) {
+              boxes.insert(boxes.end(), {w.box.x1, w.box.y1, w.box.x2, w.box.y2});
+              gauges.push_back(w.gauge);
+              covered.insert(covered.end(), w.markers.begin(), w.markers.end());
+              starts.push_back(std::int32_t(covered.size()));
+            }
+            py::dict windows;
+            windows["boxes"] = bytes_of(boxes);
+            windows["gauges"] = bytes_of(gauges);
+            windows["starts"] = bytes_of(starts);
+            windows["markers"] = bytes_of(covered);
             py::dict r;
             r["mode"] = mode;
             r["side"] = side;
             r["windows"] = windows;
-            r["used"] = s.used;
+            r["used"] = bytes_of(s.used);
             r["failed"] = s.failed.size();
             // int32 each, and only when asked: on a large layer most gauges fail, and a study's
             // twelve runs would hold them twelve times.
@@ -702,7 +715,9 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "strided views allowed): x, y (doubles), types (int32 type index 0-4), norms (normalised score, doubles);\n"
       "markers = array('d') of x1, y1, x2, y2 per marker; sides the window sides, modes among A (centre strictly\n"
       "inside), B (marker inside), C (overlap). Returns, modes outer and sides inner, [{'mode', 'side', 'windows':\n"
-      "[(x1, y1, x2, y2, spot index, [markers newly covered])], 'used' (spot indices), 'failed' (count),\n"
+      "{'boxes': float64 bytes x1, y1, x2, y2 a window, 'gauges': int32 bytes (its spot index), 'starts': int32\n"
+      "bytes (window i's markers newly covered are markers[starts[i]:starts[i + 1]]), 'markers': int32 bytes},\n"
+      "'used' (spot indices as int32 bytes), 'failed' (count),\n"
       "'failed_spots' (spot indices as int32 bytes; None unless failed=True), 'used_by_type', 'failed_by_type'\n"
       "([(count, lowest, highest normalised score)] per type index), 'redundant', 'traversed', 'covered',\n"
       "'seconds'}]. brute=True: the brute-force oracle.");

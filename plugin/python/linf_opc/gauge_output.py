@@ -2,7 +2,6 @@
 import contextlib
 import csv
 from array import array
-from collections.abc import Sequence
 from xml.sax import saxutils
 
 import pya
@@ -10,6 +9,7 @@ import pya
 from . import core, drawing, report_db
 from .gauges import TYPES, GaugeTable
 from .output import copy_drawing, write_by_core
+from .subset import Subset
 
 CSV_HEADER = ["id", "type", "x1", "y1", "x2", "y2", "cx", "cy", "cd", "score", "norm_score", "tiebreak", "rank"]
 
@@ -83,19 +83,6 @@ def _drawing(gauges, dbu, layer, cell_name):
 # A marker browser is for reading: as a DRC deck's maximum results per check, the report
 # database holds the most critical gauges of each type, gauges.csv and the gauge layer all.
 REPORT_MAX_PER_TYPE = 100000
-
-
-class Subset(Sequence):
-    """Some items of a sequence, by index, each made on access: half a million Gauge records
-    in a list would cost hundreds of MB on a full layer."""
-    def __init__(self, items, indices):
-        self._items, self._indices = items, indices
-
-    def __len__(self):
-        return len(self._indices)
-
-    def __getitem__(self, i):
-        return self._items[self._indices[i]]
 
 
 def most_critical(gauges, max_per_type):

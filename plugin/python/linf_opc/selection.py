@@ -9,6 +9,7 @@ The selection itself runs in the core (an R-tree over the markers); this module 
 """
 import time
 from array import array
+from collections.abc import Sequence
 
 from . import core
 from .gauges import TYPES as gauge_types
@@ -62,11 +63,43 @@ def similarity(c1, c2):
     return 100.0 * common / total if total else 0.0
 
 
+class Windows(Sequence):
+    """A run's windows as the core's columns (select_windows), each window made on access as
+    (x1, y1, x2, y2, gauge index, [indices of the markers it covers first]): a full layer's study
+    has twelve runs of tens of thousands of windows, and a tuple each would be hundreds of MB."""
+
+    def __init__(self, columns):
+        self._boxes = memoryview(columns["boxes"]).cast("d")
+        self._gauges = memoryview(columns["gauges"]).cast("i")
+        self._starts = memoryview(columns["starts"]).cast("i")
+        self._markers = memoryview(columns["markers"]).cast("i")
+
+    def __len__(self):
+        return len(self._gauges)
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(len(self)))]
+        if i < 0:
+            i += len(self)
+        if not 0 <= i < len(self):
+            raise IndexError("window index out of range")
+        x1, y1, x2, y2 = self._boxes[4 * i:4 * i + 4]
+        return x1, y1, x2, y2, self._gauges[i], list(self._markers[self._starts[i]:self._starts[i + 1]])
+
+    def __eq__(self, other):
+        return isinstance(other, Sequence) and len(self) == len(other) and all(a == b for a, b in zip(self, other))
+
+    def boxes(self):
+        """x1, y1, x2, y2 of every window, one flat float64 view (no copy)."""
+        return self._boxes
+
+
 class Run:
     def __init__(self, mode, size, side, raw, gauges, n_markers, types, failed_of=None):
         self.mode, self.size, self.side = mode, size, side
-        self.windows = raw["windows"]  # (x1, y1, x2, y2, gauge index, [markers newly covered])
-        self._used = array("i", raw["used"])  # the used gauges' indices
+        self.windows = Windows(raw["windows"])
+        self._used = memoryview(raw["used"]).cast("i")  # the used gauges' indices
         self._gauges = gauges
         self.n_failed = raw["failed"]
         self._failed_spots = raw["failed_spots"]

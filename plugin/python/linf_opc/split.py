@@ -12,17 +12,18 @@ in the README ("Calibration and verification").
 """
 import random
 from array import array
+from collections.abc import Sequence
 
 from . import core
+from .subset import Subset
 
 SETS = ("calibration", "verification")
 
 
 class Pattern:
     """A selected window: box (x1, y1, x2, y2) in DBU, its gauge (gauges[index], made when asked
-    for: a full layer's split has hundreds of thousands of patterns, and a Gauge each would be
-    most of the flow's memory at its end), the markers inside, and whether it covers a marker
-    first (a selection window) or not (a failed gauge's window)."""
+    for), the markers inside, and whether it covers a marker first (a selection window) or not
+    (a failed gauge's window). Made by Patterns on access."""
     __slots__ = ("box", "index", "markers", "covers_marker", "_gauges")
 
     def __init__(self, box, gauges, index, markers, covers_marker):
@@ -34,26 +35,71 @@ class Pattern:
         return self._gauges[self.index]
 
 
+class Patterns(Sequence):
+    """The patterns as columns (boxes, gauge indices, the markers inside as indices into the
+    markers), a Pattern made on access: a full layer's split has hundreds of thousands of
+    patterns, and a Pattern each with its tuples and lists would be most of the flow's memory
+    at its end."""
+
+    def __init__(self, gauges, markers):
+        self._gauges, self._markers = gauges, markers
+        self._boxes, self._index, self._covers = array("d"), array("i"), bytearray()
+        self._starts, self._inside = array("i", [0]), array("i")
+
+    def append(self, box, index, inside, covers_marker):
+        self._boxes.extend(box)
+        self._index.append(index)
+        self._covers.append(bool(covers_marker))
+        self._inside.extend(inside)
+        self._starts.append(len(self._inside))
+
+    def __len__(self):
+        return len(self._index)
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(len(self)))]
+        if i < 0:
+            i += len(self)
+        if not 0 <= i < len(self):
+            raise IndexError("pattern index out of range")
+        inside = self._inside[self._starts[i]:self._starts[i + 1]]
+        return Pattern(tuple(self._boxes[4 * i:4 * i + 4]), self._gauges, self._index[i],
+                       [self._markers[j] for j in inside], bool(self._covers[i]))
+
+    def gauge_indices(self):
+        return self._index
+
+    def covering(self):
+        """One byte a pattern: 1 where it covers a marker first."""
+        return self._covers
+
+
 def patterns_of(run, gauges, markers):
     """The selection's windows, then the failed gauges' windows that overlap no pattern."""
     side = run.side
-    buckets = {}  # markers by grid cell of the window side, for "the markers inside"
-    for m in markers:
+    buckets = {}  # marker indices by grid cell of the window side, for "the markers inside"
+    for k, m in enumerate(markers):
         for i in range(int(m[0] // side), int(m[2] // side) + 1):
             for j in range(int(m[1] // side), int(m[3] // side) + 1):
-                buckets.setdefault((i, j), []).append(m)
+                buckets.setdefault((i, j), []).append(k)
 
     def markers_in(b):
-        found = set(m for i in range(int(b[0] // side) - 1, int(b[2] // side) + 2)
-                    for j in range(int(b[1] // side) - 1, int(b[3] // side) + 2) for m in buckets.get((i, j), ()))
-        return sorted(m for m in found if m[0] <= b[2] and m[2] >= b[0] and m[1] <= b[3] and m[3] >= b[1])
+        # By value, one index per distinct box, in the boxes' order (equal boxes are one marker).
+        found = {}
+        for i in range(int(b[0] // side) - 1, int(b[2] // side) + 2):
+            for j in range(int(b[1] // side) - 1, int(b[3] // side) + 2):
+                for k in buckets.get((i, j), ()):
+                    found.setdefault(tuple(markers[k]), k)
+        return [k for m, k in sorted(found.items()) if m[0] <= b[2] and m[2] >= b[0] and m[1] <= b[3] and m[3] >= b[1]]
 
-    out = [Pattern((x1, y1, x2, y2), gauges, gi, markers_in((x1, y1, x2, y2)), True)
-           for x1, y1, x2, y2, gi, ms in run.windows]
+    out = Patterns(gauges, markers)
+    for x1, y1, x2, y2, gi, ms in run.windows:
+        out.append((x1, y1, x2, y2), gi, markers_in((x1, y1, x2, y2)), True)
     # Millions of failed spots on a large layer: the core reads their centres in the table's
     # columns, picked by index.
     failed = run.failed_spots
-    taken = array("d", (v for w in run.windows for v in w[:4]))
+    taken = run.windows.boxes() if hasattr(run.windows, "boxes") else array("d", (v for w in run.windows for v in w[:4]))
     if hasattr(gauges, "centres"):
         cx, cy = gauges.centres()
         kept = core.free_windows(taken, cx, cy, side, ids=failed)
@@ -64,7 +110,7 @@ def patterns_of(run, gauges, markers):
     for k in memoryview(kept).cast("i"):
         gi = failed[k]
         g = gauges[gi]
-        out.append(Pattern((g.cx - h, g.cy - h, g.cx + h, g.cy + h), gauges, gi, [], False))
+        out.append((g.cx - h, g.cy - h, g.cx + h, g.cy + h), gi, (), False)
     return out
 
 
@@ -81,7 +127,8 @@ class Split:
         self.bin_width = bin_width
 
     def members(self, which):
-        return [p for p, a in zip(self.patterns, self.assign) if a == which]
+        """The patterns of one set, in order, each made on access."""
+        return Subset(self.patterns, array("i", (i for i, a in enumerate(self.assign) if a == which)))
 
     def classes(self):
         """[{type, bin, n, calibration, verification}] sorted by type and bin."""
