@@ -9,7 +9,7 @@ import pya
 from . import core, drawing, report_db
 from .gauges import TYPES, GaugeTable
 from .output import copy_drawing, write_by_core
-from .subset import Subset
+from .records import Subset
 
 CSV_HEADER = ["id", "type", "x1", "y1", "x2", "y2", "cx", "cy", "cd", "score", "norm_score", "tiebreak", "rank"]
 

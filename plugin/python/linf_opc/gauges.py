@@ -10,11 +10,11 @@ import os
 import time
 from array import array
 from collections import namedtuple
-from collections.abc import Sequence
 from itertools import compress
 
 from . import core, drawing
 from .polygons import core_input
+from .records import Records
 
 TYPES = ("internal", "external", "sandwich", "comb", "T")
 
@@ -22,7 +22,7 @@ Gauge = namedtuple("Gauge", "type x1 y1 x2 y2 cx cy cd score norm_score tiebreak
                             "site_a_geom site_b_geom site_a site_b stretch")
 
 
-class GaugeTable(Sequence):
+class GaugeTable(Records):
     """The ranked gauges as the core's columns (see gauges_polygons), a Gauge made on access:
     a large layer has millions of gauges, and a tuple each would be most of the flow's memory.
     A read-only sequence: len, indexing (slices give lists), iteration in rank order.
@@ -68,13 +68,7 @@ class GaugeTable(Sequence):
     def __len__(self):
         return self._n
 
-    def __getitem__(self, i):
-        if isinstance(i, slice):
-            return [self[k] for k in range(*i.indices(self._n))]
-        if i < 0:
-            i += self._n
-        if not 0 <= i < self._n:
-            raise IndexError("gauge index out of range")
+    def _record(self, i):
         r = self._reals[10 * i:10 * i + 10]
         k = self._ints[13 * i:13 * i + 13]
         return Gauge(TYPES[k[12]], *r, k[0], k[1], tuple(k[4:8]), tuple(k[8:12]), k[2], k[3],

@@ -13,6 +13,7 @@ from collections.abc import Sequence
 
 from . import core
 from .gauges import TYPES as gauge_types
+from .records import Records
 
 SIZES = (5, 6, 7, 8)
 MODES = ("A", "B", "C")
@@ -63,7 +64,7 @@ def similarity(c1, c2):
     return 100.0 * common / total if total else 0.0
 
 
-class Windows(Sequence):
+class Windows(Records):
     """A run's windows as the core's columns (select_windows), each window made on access as
     (x1, y1, x2, y2, gauge index, [indices of the markers it covers first]): a full layer's study
     has twelve runs of tens of thousands of windows, and a tuple each would be hundreds of MB."""
@@ -77,13 +78,7 @@ class Windows(Sequence):
     def __len__(self):
         return len(self._gauges)
 
-    def __getitem__(self, i):
-        if isinstance(i, slice):
-            return [self[k] for k in range(*i.indices(len(self)))]
-        if i < 0:
-            i += len(self)
-        if not 0 <= i < len(self):
-            raise IndexError("window index out of range")
+    def _record(self, i):
         x1, y1, x2, y2 = self._boxes[4 * i:4 * i + 4]
         return x1, y1, x2, y2, self._gauges[i], list(self._markers[self._starts[i]:self._starts[i + 1]])
 

@@ -12,10 +12,9 @@ in the README ("Calibration and verification").
 """
 import random
 from array import array
-from collections.abc import Sequence
 
 from . import core
-from .subset import Subset
+from .records import Records, Subset
 
 SETS = ("calibration", "verification")
 
@@ -35,7 +34,7 @@ class Pattern:
         return self._gauges[self.index]
 
 
-class Patterns(Sequence):
+class Patterns(Records):
     """The patterns as columns (boxes, gauge indices, the markers inside as indices into the
     markers), a Pattern made on access: a full layer's split has hundreds of thousands of
     patterns, and a Pattern each with its tuples and lists would be most of the flow's memory
@@ -56,13 +55,7 @@ class Patterns(Sequence):
     def __len__(self):
         return len(self._index)
 
-    def __getitem__(self, i):
-        if isinstance(i, slice):
-            return [self[k] for k in range(*i.indices(len(self)))]
-        if i < 0:
-            i += len(self)
-        if not 0 <= i < len(self):
-            raise IndexError("pattern index out of range")
+    def _record(self, i):
         inside = self._inside[self._starts[i]:self._starts[i + 1]]
         return Pattern(tuple(self._boxes[4 * i:4 * i + 4]), self._gauges, self._index[i],
                        [self._markers[j] for j in inside], bool(self._covers[i]))
