@@ -120,11 +120,11 @@ class Run:
 
     @property
     def failed_spots(self):
-        """The failed gauges' indices (int32). On a large layer most gauges fail, so a study
-        keeps only their count and this run's selection is made again when they are asked for."""
-        if self._failed_spots is None:
-            self._failed_spots = self._failed_of(self.mode, self.side)
-        return memoryview(self._failed_spots).cast("i")
+        """The failed gauges' indices (int32). On a large layer most gauges fail (4 bytes each),
+        so a study keeps only their count, and this run's selection is made again each time
+        they are asked for (once, by the split) and not kept."""
+        spots = self._failed_spots if self._failed_spots is not None else self._failed_of(self.mode, self.side)
+        return memoryview(spots).cast("i")
 
     def row(self, dbu):
         """The columns of Tables 5.2-5.4 (T in seconds, the core's selection time)."""
