@@ -530,8 +530,8 @@ PYBIND11_MODULE(linf_opc_core, m) {
   m.def(
       "write_clip_library",
       [](const std::string& path, double dbu, const py::tuple& polygons, int layer, int datatype, int gauges,
-         int windows, int markers, const std::vector<std::string>& names, py::buffer window_box, py::buffer lines,
-         py::buffer at, const std::vector<std::string>& labels, py::buffer marker_counts, py::buffer marker_boxes) {
+         int windows, int markers, const py::bytes& names, py::buffer window_box, py::buffer lines, py::buffer at,
+         const py::bytes& labels, py::buffer marker_counts, py::buffer marker_boxes) {
         if (py::len(polygons) != 2) throw py::value_error("polygons must be (points, rings) flat arrays");
         const LayerInput layer_input(polygons);
         const FlatPolygons& flat = layer_input.flat();
@@ -542,16 +542,29 @@ PYBIND11_MODULE(linf_opc_core, m) {
         const std::int64_t* a = int64s_of(ai, "at");
         const std::int64_t* mc = int64s_of(ci, "marker_counts");
         const Doubles mb = doubles_of(marker_boxes, 4, "markers");
-        const std::size_t n = names.size();
+        // One line a clip; views into the bytes, which the caller holds through the call.
+        auto lines_of = [](const py::bytes& text) {
+          std::vector<std::string_view> out;
+          std::string_view rest(PyBytes_AS_STRING(text.ptr()), std::size_t(PyBytes_GET_SIZE(text.ptr())));
+          while (!rest.empty()) {
+            const std::size_t end = rest.find('\n');
+            if (end == std::string_view::npos) throw py::value_error("names and labels end each with a newline");
+            out.push_back(rest.substr(0, end));
+            rest.remove_prefix(end + 1);
+          }
+          return out;
+        };
+        const std::vector<std::string_view> name = lines_of(names), label = lines_of(labels);
+        const std::size_t n = name.size();
         if (std::size_t(wi.shape[0]) != 4 * n || std::size_t(li.shape[0]) != 4 * n || std::size_t(ai.shape[0]) != 2 * n ||
-            labels.size() != n || std::size_t(ci.shape[0]) != n)
+            label.size() != n || std::size_t(ci.shape[0]) != n)
           throw py::value_error("one name, window, line, label position, label and marker count a clip");
         std::vector<Clip> clips(n);
         std::size_t m = 0;
         for (std::size_t i = 0; i < n; ++i) {
           Clip& c = clips[i];
-          c.name = names[i];
-          c.label = labels[i];
+          c.name = name[i];
+          c.label = label[i];
           for (int k = 0; k < 4; ++k) c.window[k] = w[4 * i + k], c.line[k] = ln[4 * i + k];
           c.at = {a[2 * i], a[2 * i + 1]};
           for (std::int64_t j = 0; j < mc[i]; ++j, ++m) {
@@ -574,7 +587,7 @@ PYBIND11_MODULE(linf_opc_core, m) {
       "Writes a clip library as OASIS, one cell a clip: the layer's polygons (flat (points, rings) arrays, as\n"
       "drawn) merged and cut to the clip's window on layer/datatype; its measurement line (a zero-width path) and\n"
       "label (a text) on datatype `gauges`, the window outline on `windows`, its markers on `markers`. names,\n"
-      "labels: one a clip; window_boxes, lines: array('q') x1, y1, x2, y2 a clip (DBU); at: array('q') x, y a\n"
+      "labels: bytes, one line a clip, each ending with a newline; window_boxes, lines: array('q') x1, y1, x2, y2 a clip (DBU); at: array('q') x, y a\n"
       "clip (the label); marker_counts: array('q') a clip; marker_boxes: array('d') x1, y1, x2, y2 (DBU), the\n"
       "clips' markers in turn. Returns the number of shapes written.");
 

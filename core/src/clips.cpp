@@ -18,14 +18,14 @@ std::size_t write_clip_library(const std::string& path, double dbu, const FlatPo
   if (clips.empty()) throw std::invalid_argument("a clip library needs at least one clip");
   const PolygonIndex ix(layer);
   const BoxTree tree(ix.size(), [&](std::size_t i) { return ix.box(i); });
-  OasisWriter w(path, dbu, clips.front().name);
+  OasisWriter w(path, dbu, std::string(clips.front().name));
   w.layer_name("gauges", l.layer, l.gauges);
   w.layer_name("windows", l.layer, l.windows);
   w.layer_name("markers", l.layer, l.markers);
   std::size_t shapes = 0;
   for (std::size_t c = 0; c < clips.size(); ++c) {
     const Clip& clip = clips[c];
-    if (c > 0) w.cell(clip.name);
+    if (c > 0) w.cell(std::string(clip.name));
     const auto& b = clip.window;
     // The shapes that meet the window, merged and cut to it (KLayout: layer & window).
     bp::polygon_set_data<int> set;
@@ -53,7 +53,7 @@ std::size_t write_clip_library(const std::string& path, double dbu, const FlatPo
       w.polygon(l.layer, l.datatype, r), ++shapes;
     }
     w.path(l.layer, l.gauges, clip.line[0], clip.line[1], clip.line[2], clip.line[3]);
-    w.text(l.layer, l.gauges, clip.at[0], clip.at[1], clip.label);
+    w.text(l.layer, l.gauges, clip.at[0], clip.at[1], std::string(clip.label));
     w.polygon(l.layer, l.windows, box_ring(clip.window));
     for (const auto& m : clip.markers) w.polygon(l.layer, l.markers, box_ring(m));
     shapes += 3 + clip.markers.size();

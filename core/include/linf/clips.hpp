@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "linf/oasis.hpp"
@@ -17,12 +18,14 @@
 
 namespace linf {
 
+// The name and the label are views into the caller's text: a full layer's split has hundreds
+// of thousands of clips, and a string of each, held twice, was most of the writer's memory.
 struct Clip {
-  std::string name;
+  std::string_view name;
   std::array<std::int64_t, 4> window{};  // x1, y1, x2, y2 (DBU): the clip boundary
   std::array<std::int64_t, 4> line{};    // the measurement line's ends
   std::array<std::int64_t, 2> at{};      // where its label goes
-  std::string label;
+  std::string_view label;
   std::vector<std::array<std::int64_t, 4>> markers;
 };
 

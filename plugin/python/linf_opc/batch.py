@@ -450,11 +450,10 @@ def split_of(args, sel):
 
 def write_split(inp, split):
     """The two clip libraries, the two gauge lists, split.json."""
-    names = {}
     for which in split_stage.SETS:
         members = split.members(which)
-        names[which] = clips.write_library(inp.file("%s.oas" % which), which, members, inp.polygons, inp.layer,
-                                           inp.datatype, inp.dbu)
+        clips.write_library(inp.file("%s.oas" % which), which, members, inp.polygons, inp.layer, inp.datatype,
+                            inp.dbu)
         gauge_output.write_csv((p.gauge for p in members), inp.file("%s_gauges.csv" % which), inp.dbu)
     s = split.summary()
     output.write_json(s, inp.file("split.json"))

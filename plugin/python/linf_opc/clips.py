@@ -7,6 +7,7 @@ Each clip cell holds, in layout coordinates (so that it overlays the source):
   L/230   the markers that meet the window.
 Cells are named SET_rRANK_TYPE_SCORE, e.g. CAL_r000042_sandwich_0p0245 (score in µm, '.' -> 'p').
 """
+import io
 from array import array
 
 import pya
@@ -38,17 +39,21 @@ def label(g, dbu):
 
 def write_library(path, which, patterns, polygons, layer, datatype, dbu):
     """Writes the clips of one set, cut from the layer's polygons (polygons.Polygons, as drawn);
-    returns the cell names in order. The core writes the file: a library of hundreds of thousands
-    of clips built in a KLayout layout kept about 2 KB a cell even after the layout was deleted."""
-    names = [cell_name(which, p.gauge, dbu) for p in patterns]
+    returns the number of clips. The core writes the file: a library of hundreds of thousands of
+    clips built in a KLayout layout kept about 2 KB a cell even after the layout was deleted. The
+    cells' names and labels go to it as one text each, a line a clip (a string each, in a list,
+    was most of this step's memory on a full layer)."""
     if not patterns:
         lib = pya.Layout()
         lib.dbu = dbu
         output.save(lib, path)
-        return names
+        return 0
     windows, lines, at, counts, markers = array("q"), array("q"), array("q"), array("q"), array("d")
+    names, labels = io.StringIO(), io.StringIO()
     for p in patterns:
         g = p.gauge
+        names.write(cell_name(which, g, dbu) + "\n")
+        labels.write(label(g, dbu) + "\n")
         b = window_box(p.box)
         windows.extend((b.left, b.bottom, b.right, b.top))
         lines.extend((round(g.x1), round(g.y1), round(g.x2), round(g.y2)))
@@ -57,6 +62,6 @@ def write_library(path, which, patterns, polygons, layer, datatype, dbu):
         for m in p.markers:
             markers.extend(m[:4])
     core.write_clip_library(path, dbu, core_input(polygons), layer, datatype, GAUGE_DATATYPE, WINDOW_DATATYPE,
-                            MARKER_DATATYPE, names, windows, lines, at, [label(p.gauge, dbu) for p in patterns],
+                            MARKER_DATATYPE, names.getvalue().encode(), windows, lines, at, labels.getvalue().encode(),
                             counts, markers)
-    return names
+    return len(counts)
