@@ -1,7 +1,7 @@
 # Result layouts written by the core (output.write_by_core, for layouts of millions of shapes)
 # against the same layouts built in KLayout and saved by it: the batch's voronoi and gauges
 # commands (and select, with markers: windows.oas) run in this process twice, the second time
-# with output.COMPACT_MAX_SHAPES at zero.
+# with output.COMPACT_MAX_SHAPES and polygons.SPILL_SHAPES at zero.
 #   klayout -b -r tests/klayout/check_core_oasis.py -rd input=FILE -rd layer=L/D [-rd cell=NAME]
 #           [-rd markers=SPEC] -rd work=DIR
 # input=rings draws its own layout first: boxes with one and two holes, and a triangle.
@@ -20,7 +20,7 @@ repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 sys.path.insert(0, os.path.join(repo, "build"))
 sys.path.insert(0, os.path.join(repo, "plugin", "python"))
 
-from linf_opc import batch, output  # noqa: E402
+from linf_opc import batch, output, polygons  # noqa: E402
 
 g = globals()
 work = g.get("work") or "/tmp/linf_core_oasis"
@@ -86,6 +86,7 @@ default = os.path.join(work, "klayout")
 core = os.path.join(work, "core")
 run(default)
 output.COMPACT_MAX_SHAPES = 0
+polygons.SPILL_SHAPES = 0  # and the layer read from its spilled arrays, as on a large layer
 run(core)
 for name in ("voronoi.oas", "gauges.oas") + (("windows.oas",) if g.get("markers") else ()):
     dbu_k, cell_k, a = content(os.path.join(default, name))

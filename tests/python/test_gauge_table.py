@@ -7,7 +7,7 @@ import unittest
 from array import array
 
 import linf_opc_core as core
-from linf_opc import gauges, selection
+from linf_opc import drawing, gauges, selection, worker
 from linf_opc.polygons import Polygons
 from test_determinism import layout as random_boxes
 
@@ -111,6 +111,28 @@ class GaugeTableColumns(unittest.TestCase):
         self.assertEqual(list(flat), [(o, h) for o, h in self.polys])
         self.assertEqual(list(gauges.compute(flat).gauges), self.rows)
         self.assertEqual(core.voronoi_polygons(flat.flat())["pieces"], core.voronoi_polygons(self.polys)["pieces"])
+
+    def test_spilled_polygons_are_the_same_and_leave_no_file(self):
+        # A large layer's arrays move into a mapped file the kernel may drop (Polygons.spill).
+        made = []
+        real = drawing.temporary
+        drawing.temporary = lambda *a: made.append(real(*a)) or made[-1]
+        try:
+            flat = Polygons.of(self.polys)
+            flat.spill()
+        finally:
+            drawing.temporary = real
+        self.assertEqual(len(made), 1)
+        self.assertFalse(os.path.exists(made[0]))
+        self.assertIsInstance(flat.points, memoryview)
+        self.assertEqual(list(flat), [(o, h) for o, h in self.polys])
+        self.assertEqual(list(gauges.compute(flat).gauges), self.rows)
+        # The editor's worker pickles a call's arguments: the arrays go as plain arrays.
+        points, rings = worker._picklable(flat.flat())
+        self.assertEqual((points, rings), Polygons.of(self.polys).flat())
+        empty = Polygons()
+        empty.spill()
+        self.assertEqual(list(empty), [])
 
     def test_flat_arrays_that_do_not_add_up_are_refused(self):
         # The core reads the arrays in place: each way they can disagree is a ValueError.

@@ -33,6 +33,7 @@ from . import layout as layer_io
 from . import markers as marker_io
 from . import output
 from . import picture as layout_picture
+from . import polygons as polygons_io
 from . import report as html_report
 from . import report_db
 from . import selection as selection_stage
@@ -133,6 +134,8 @@ class Input:
         self.polygons = layer_io.polygons_of(self.region)
         if not self.polygons:
             raise UsageError("layer %d/%d is empty in cell %s" % (self.layer, self.datatype, self.cell.name))
+        if len(self.polygons) > polygons_io.SPILL_SHAPES:
+            self.polygons.spill()
         self.t_read = time.perf_counter() - t0
         self.dbu = self.ly.dbu
         self.name = "%d/%d" % (self.layer, self.datatype)

@@ -2,7 +2,9 @@
 one run without it). output.copy_drawing puts their shapes into a layout: KLayout reads the
 file and copies its shapes in C++, several times faster than inserting them one by one from
 Python (11-14 us a shape), which on a full layer would take minutes. The gauge columns' file
-(gauges.columns_file) is made and removed here too."""
+(gauges.columns_file) and the layer's spilled arrays (polygons.Polygons.spill) are made,
+mapped and removed here too."""
+import mmap
 import os
 import tempfile
 
@@ -12,6 +14,16 @@ def temporary(prefix="linf_opc-drawing-", suffix=".gds"):
     fd, path = tempfile.mkstemp(prefix=prefix, suffix=suffix)
     os.close(fd)
     return path
+
+
+def mapped(path):
+    """The file's bytes as a read-only mmap (b"" if empty); the file is removed at once. The pages
+    stay the kernel's to drop and read again: a full layer's arrays are hundreds of MB."""
+    try:
+        with open(path, "rb") as f:
+            return mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) if os.fstat(f.fileno()).st_size else b""
+    finally:
+        remove(path)
 
 
 def remove(path):

@@ -5,8 +5,6 @@ out: Gauges: every gauge candidate of the layer, ranked (rank 1 = most likely to
      bridge), with the diagram's summary and timings. The diagram is built and checked first.
 The rules where the thesis leaves a choice open are in the README, "Gauges".
 """
-import mmap
-import os
 import time
 from array import array
 from collections import namedtuple
@@ -41,14 +39,9 @@ class GaugeTable(Records):
         self._paths = columns["paths"]
 
     def _mapped(self, path, n):
-        try:
-            with open(path, "rb") as f:
-                size = os.fstat(f.fileno()).st_size
-                if size != (80 + 52) * n:
-                    raise ValueError("the gauge columns file %s holds %d bytes, not %d" % (path, size, 132 * n))
-                self._map = mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) if n else b""
-        finally:
-            drawing.remove(path)
+        self._map = drawing.mapped(path)
+        if len(self._map) != (80 + 52) * n:
+            raise ValueError("the gauge columns file %s held %d bytes, not %d" % (path, len(self._map), 132 * n))
         whole = memoryview(self._map)
         return whole[:80 * n], whole[80 * n:]
 

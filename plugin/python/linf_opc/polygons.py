@@ -7,6 +7,11 @@ so code written for the list form reads it unchanged.
 """
 from array import array
 
+from . import drawing
+
+# Layers of more shapes than this are spilled (Polygons.spill) once read: the batch's limit.
+SPILL_SHAPES = 200000
+
 
 class Polygons:
     def __init__(self):
@@ -43,6 +48,21 @@ class Polygons:
             self.points.append(y)
             n += 1
         self.rings.append(sign * n)
+
+    def spill(self):
+        """Moves the two arrays into a mapped temporary file, read-only from here on (add() no
+        longer works): a layer of millions of shapes is hundreds of MB, which the kernel may
+        then drop and read again instead of the process holding them to the end of the flow.
+        The core reads them in place either way."""
+        if not self.rings:
+            return
+        path = drawing.temporary("linf_opc-layer-", ".flat")
+        with open(path, "wb") as f:
+            self.points.tofile(f)
+            self.rings.tofile(f)
+        n = 8 * len(self.points)
+        self._map = drawing.mapped(path)
+        self.points, self.rings = memoryview(self._map)[:n].cast("q"), memoryview(self._map)[n:].cast("q")
 
     def flat(self):
         """(points, rings): what the core's *_polygons functions take."""

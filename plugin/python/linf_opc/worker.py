@@ -48,11 +48,14 @@ pickle.dump(result, sys.stdout.buffer, protocol=pickle.HIGHEST_PROTOCOL)
 
 
 def _picklable(value):
-    """Memoryviews (the gauge table's columns) cannot be pickled: the same values as an array."""
+    """Memoryviews (the gauge table's columns, a spilled layer's arrays) cannot be pickled: the
+    same values as an array."""
     if isinstance(value, memoryview):
         out = array(value.format)
-        out.frombytes(value.tobytes())
+        out.frombytes(value.cast("B") if value.contiguous else value.tobytes())
         return out
+    if isinstance(value, tuple):
+        return tuple(_picklable(v) for v in value)
     return value
 
 
