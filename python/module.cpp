@@ -805,12 +805,12 @@ PYBIND11_MODULE(linf_opc_core, m) {
         const Column<double> c = column_of<double>(cd, "cd"), e = column_of<double>(extension, "extension");
         const Column<std::int32_t> t = column_of<std::int32_t>(types, "types");
         if (e.size() != c.size() || t.size() != c.size()) throw py::value_error("one value a gauge in every column");
-        std::vector<std::pair<double, double>> widths, spaces;
+        Paged<Weighted> widths, spaces;
         for (std::size_t i = 0; i < c.size(); ++i) {
           if (t[i] == 0) widths.push_back({c[i], e[i]});
           else if (t[i] == 1) spaces.push_back({c[i], e[i]});
         }
-        return estimate_pitch(widths, spaces);
+        return estimate_pitch_in_place(widths, spaces);
       },
       py::arg("cd"), py::arg("extension"), py::arg("types"),
       "The same from the gauges' columns (one-dimensional buffers, strided views too): cd, extension\n"

@@ -162,15 +162,20 @@ std::vector<Box> cover_points(std::vector<Vec2> points, double side) {
   return out;
 }
 
+double estimate_pitch_in_place(Paged<Weighted>& widths, Paged<Weighted>& spaces) {
+  const double w = weighted_median_in_place(widths);
+  spaces.resize(std::size_t(
+      std::remove_if(spaces.begin(), spaces.end(), [&](const Weighted& p) { return p.value > 10 * w; }) - spaces.begin()));
+  const double s = weighted_median_in_place(spaces);
+  return w > 0 && s > 0 ? w + s : 0.0;
+}
+
 double estimate_pitch(const std::vector<std::pair<double, double>>& widths,
                       const std::vector<std::pair<double, double>>& spaces) {
-  auto below = [](std::vector<std::pair<double, double>> v, double limit) {
-    v.erase(std::remove_if(v.begin(), v.end(), [&](auto& p) { return p.first > limit; }), v.end());
-    return v;
-  };
-  const double w = weighted_median(widths);
-  const double s = weighted_median(below(spaces, 10 * w));
-  return w > 0 && s > 0 ? w + s : 0.0;
+  Paged<Weighted> w, s;
+  for (const auto& [cd, extension] : widths) w.push_back({cd, extension});
+  for (const auto& [cd, extension] : spaces) s.push_back({cd, extension});
+  return estimate_pitch_in_place(w, s);
 }
 
 }  // namespace linf

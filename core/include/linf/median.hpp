@@ -1,7 +1,5 @@
 #pragma once
 #include <algorithm>
-#include <utility>
-#include <vector>
 
 namespace linf {
 
@@ -23,13 +21,6 @@ double weighted_median_in_place(Range& v) {
   for (const Weighted& p : v)
     if ((acc += p.weight) >= 0.5 * total) return p.value;
   return (v.end() - 1)->value;
-}
-
-inline double weighted_median(const std::vector<std::pair<double, double>>& pairs) {
-  std::vector<Weighted> v;
-  v.reserve(pairs.size());
-  for (const auto& [x, w] : pairs) v.push_back({x, w});
-  return weighted_median_in_place(v);
 }
 
 }  // namespace linf

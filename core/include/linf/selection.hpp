@@ -14,6 +14,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "linf/median.hpp"
+#include "linf/paged.hpp"
 #include "linf/piece.hpp"
 
 namespace linf {
@@ -91,5 +93,9 @@ std::vector<std::int32_t> free_windows(const std::vector<Box>& taken, const Vec2
 // (cd, extension). Returns 0 without widths or spaces.
 double estimate_pitch(const std::vector<std::pair<double, double>>& widths,
                       const std::vector<std::pair<double, double>>& spaces);
+
+// The same, reordering and shortening `widths` and `spaces` in place: a full layer's pairs are
+// hundreds of MB, and copies of them were most of the flow's memory while it took the pitch.
+double estimate_pitch_in_place(Paged<Weighted>& widths, Paged<Weighted>& spaces);
 
 }  // namespace linf
