@@ -60,9 +60,6 @@ class Patterns(Records):
         return Pattern(tuple(self._boxes[4 * i:4 * i + 4]), self._gauges, self._index[i],
                        [self._markers[j] for j in inside], bool(self._covers[i]))
 
-    def gauge_indices(self):
-        return self._index
-
     def covering(self):
         """One byte a pattern: 1 where it covers a marker first."""
         return self._covers
@@ -135,13 +132,14 @@ class Split:
 
     def summary(self):
         cls = self.classes()
+        covers = self.patterns.covering()  # a column: no Pattern made per count
         return {
             "mode": self.mode,
             "parameters": self.params,
             "patterns": len(self.patterns),
-            "covering_markers": sum(1 for p in self.patterns if p.covers_marker),
-            "counts": {s: len(self.members(s)) for s in SETS},
-            "covering_markers_per_set": {s: sum(1 for p in self.members(s) if p.covers_marker) for s in SETS},
+            "covering_markers": sum(covers),
+            "counts": {s: self.assign.count(s) for s in SETS},
+            "covering_markers_per_set": {s: sum(1 for c, a in zip(covers, self.assign) if c and a == s) for s in SETS},
             "classes": cls,
             "classes_covered": {s: ["%s %.6g" % (c["type"], c["bin"]) for c in cls if c[s] > 0] for s in SETS},
         }
