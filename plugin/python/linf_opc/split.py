@@ -89,7 +89,7 @@ def patterns_of(run, gauges, markers):
     # Millions of failed spots on a large layer: the core reads their centres in the table's
     # columns, picked by index.
     failed = run.failed_spots
-    taken = run.windows.boxes() if hasattr(run.windows, "boxes") else array("d", (v for w in run.windows for v in w[:4]))
+    taken = run.windows.boxes()
     if hasattr(gauges, "centres"):
         cx, cy = gauges.centres()
         kept = core.free_windows(taken, cx, cy, side, ids=failed)
