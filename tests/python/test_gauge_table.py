@@ -3,11 +3,12 @@
 # say the same as the plain lists they replace.
 #   PYTHONPATH=plugin/python:build python3 tests/python/test_gauge_table.py
 import os
+import tempfile
 import unittest
 from array import array
 
 import linf_opc_core as core
-from linf_opc import drawing, gauges, selection, worker
+from linf_opc import gauges, polygons, selection, worker
 from linf_opc.polygons import Polygons
 from test_determinism import layout as random_boxes
 
@@ -113,23 +114,36 @@ class GaugeTableColumns(unittest.TestCase):
         self.assertEqual(core.voronoi_polygons(flat.flat())["pieces"], core.voronoi_polygons(self.polys)["pieces"])
 
     def test_spilled_polygons_are_the_same_and_leave_no_file(self):
-        # A large layer's arrays move into a mapped file the kernel may drop (Polygons.spill).
-        made = []
-        real = drawing.temporary
-        drawing.temporary = lambda *a: made.append(real(*a)) or made[-1]
-        try:
-            flat = Polygons.of(self.polys)
-            flat.spill()
-        finally:
-            drawing.temporary = real
-        self.assertEqual(len(made), 1)
-        self.assertFalse(os.path.exists(made[0]))
-        self.assertIsInstance(flat.points, memoryview)
-        self.assertEqual(list(flat), [(o, h) for o, h in self.polys])
-        self.assertEqual(list(gauges.compute(flat).gauges), self.rows)
+        # A large layer's arrays go to mapped files the kernel may drop (Polygons.spill): whole
+        # once read, or a chunk at a time while it is read (spill_over), never all in memory.
+        old_dir, old_chunk = tempfile.tempdir, polygons.CHUNK
+        with tempfile.TemporaryDirectory() as d:
+            tempfile.tempdir = d
+            try:
+                whole = Polygons.of(self.polys)
+                whole.spill()
+                polygons.CHUNK = 7  # chunks that end inside rings and inside points
+                chunked = Polygons(spill_over=3)
+                for outer, holes in self.polys:
+                    chunked.add(outer, holes)
+                held = len(chunked.points)
+                self.assertEqual(os.listdir(d), [])  # the files are unlinked as they are made
+                chunked.spill()
+            finally:
+                tempfile.tempdir, polygons.CHUNK = old_dir, old_chunk
+        self.assertLess(held, 8)  # at most a chunk was in memory when the last shape was added
+        for flat in (whole, chunked):
+            self.assertIsInstance(flat.points, memoryview)
+            self.assertEqual(len(flat), len(self.polys))
+            self.assertEqual(list(flat), [(o, h) for o, h in self.polys])
+        self.assertEqual(list(gauges.compute(chunked).gauges), self.rows)
         # The editor's worker pickles a call's arguments: the arrays go as plain arrays.
-        points, rings = worker._picklable(flat.flat())
+        points, rings = worker._picklable(chunked.flat())
         self.assertEqual((points, rings), Polygons.of(self.polys).flat())
+        few = Polygons(spill_over=len(self.polys))  # not over the limit: stays in memory
+        for outer, holes in self.polys:
+            few.add(outer, holes)
+        self.assertIsInstance(few.points, array)
         empty = Polygons()
         empty.spill()
         self.assertEqual(list(empty), [])

@@ -21,6 +21,8 @@ import shutil
 import sys
 import tempfile
 import time
+from array import array
+from collections import namedtuple
 
 import pya
 
@@ -131,11 +133,9 @@ class Input:
         self.dir = self.out.final  # where the files end up (named in messages)
         t0 = time.perf_counter()
         self.region = layer_io.region_of(self.cell, self.index)
-        self.polygons = layer_io.polygons_of(self.region)
+        self.polygons = layer_io.polygons_of(self.region, polygons_io.SPILL_SHAPES)
         if not self.polygons:
             raise UsageError("layer %d/%d is empty in cell %s" % (self.layer, self.datatype, self.cell.name))
-        if len(self.polygons) > polygons_io.SPILL_SHAPES:
-            self.polygons.spill()
         self.t_read = time.perf_counter() - t0
         self.dbu = self.ly.dbu
         self.name = "%d/%d" % (self.layer, self.datatype)
@@ -308,33 +308,41 @@ def select_args(args, dbu):
     return sizes, modes, mode, size, pitch, halves
 
 
-def halves_similarity(region, markers, pitch, size, dbu):
+def halves_similarity(inp, markers, pitch, size):
     """Table 5.9's experiment: the layer cut at the x-midpoint of its extent into two layouts,
     each with its own gauges and the markers whose centre lies on its side; mode A windows of
-    `size` pitches; classes on a common normalisation (the highest score of both halves)."""
-    box = region.bbox()
+    `size` pitches; classes on a common normalisation (the highest score of both halves).
+    One half at a time, each read as the layer is (spilled when large) and dropped before the
+    next: on a layer of millions of shapes each half is a whole gauge stage of its own."""
+    box = inp.region.bbox()
     xm = (box.left + box.right) // 2
-    halves = [region & pya.Region(pya.Box(box.left - 1, box.bottom - 1, xm, box.top + 1)),
-              region & pya.Region(pya.Box(xm, box.bottom - 1, box.right + 1, box.top + 1))]
-    used = []
-    for i, half in enumerate(halves):
-        polys = layer_io.polygons_of(half)
+    used = []  # (type indices, scores) of each half's used gauges
+    for i, (x1, x2) in enumerate(((box.left - 1, xm), (xm, box.right + 1))):
         ms = [m for m in markers if ((m[0] + m[2]) / 2 < xm) == (i == 0)]
-        if not polys or not ms:
-            used.append([])
+        half = inp.region & pya.Region(pya.Box(x1, box.bottom - 1, x2, box.top + 1)) if ms else pya.Region()
+        polys = layer_io.polygons_of(half, polygons_io.SPILL_SHAPES)
+        del half
+        if not polys:
+            used.append((array("B"), array("d")))
             continue
-        gs = gauge_stage.compute(polys).gauges
-        st = selection_stage.study(gs, ms, pitch, sizes=(size,), modes=("A",))
-        used.append(st.runs[("A", size)].used)
-    top = max([g.score for u in used for g in u] or [1.0])
-    c1, c2 = (selection_stage.classes(u, norm=lambda g: g.score / top) for u in used)
+        gs = gauge_stage.compute(polys, tile=inp.tile).gauges
+        del polys
+        run = selection_stage.study(gs, ms, pitch, sizes=(size,), modes=("A",)).runs[("A", size)]
+        used.append(run.used_types_scores())
+        del gs, run
+    top = max([max(scores) for _, scores in used if scores] or [1.0])
+    c1, c2 = (selection_stage.classes((TypeScore(gauge_stage.TYPES[t], s) for t, s in zip(*u)),
+                                      norm=lambda g: g.score / top) for u in used)
     n1 = {(t, s): n for t, s, n in c1}
     n2 = {(t, s): n for t, s, n in c2}
     keys = sorted(set(n1) | set(n2), key=lambda k: (k[0], k[1]))
-    return {"x_split_um": round(xm * dbu, 6), "mode": "A", "size": size,
+    return {"x_split_um": round(xm * inp.dbu, 6), "mode": "A", "size": size,
             "classes": [[t, s, n1.get((t, s), 0), n2.get((t, s), 0)] for t, s in keys],
             "N_t1": sum(n1.values()), "N_t2": sum(n2.values()),
             "S_12": round(selection_stage.similarity(c1, c2), 4)}
+
+
+TypeScore = namedtuple("TypeScore", "type score")  # what classes() reads of a gauge
 
 
 class Selected:
@@ -367,8 +375,8 @@ class Selected:
         self.study = selection_stage.study(self.gauges, self.markers.boxes, pitch, sizes, modes)
         self.chosen = self.study.runs[(mode, size)] if size else self.study.best(mode)
         t0 = time.perf_counter()
-        self.similarity = halves_similarity(inp.region, self.markers.boxes, pitch, 7 if 7 in sizes else sizes[-1],
-                                            inp.dbu) if halves else None
+        self.similarity = (halves_similarity(inp, self.markers.boxes, pitch, 7 if 7 in sizes else sizes[-1])
+                           if halves else None)
         self.t_halves = time.perf_counter() - t0
         self.result = result
 

@@ -26,6 +26,14 @@ def mapped(path):
         remove(path)
 
 
+def mapped_file(f):
+    """An open file's bytes as a read-only mmap (b"" if empty); the file is closed (the map keeps
+    what it needs of it)."""
+    with f:
+        f.flush()
+        return mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) if os.fstat(f.fileno()).st_size else b""
+
+
 def remove(path):
     try:
         os.remove(path)

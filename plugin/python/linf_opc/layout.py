@@ -29,11 +29,14 @@ def region_of(cell, layer_index):
     return region.merged() if region.count() <= MERGE_IN_KLAYOUT_MAX else region
 
 
-def polygons_of(region):
+def polygons_of(region, spill_over=None):
     """The core's input, a polygons.Polygons (flat arrays; iterating gives (outer, [holes]) with
-    rings as [(x, y)] in integer DBU): the region's polygons as they are (each(), not merged)."""
-    out = Polygons()
+    rings as [(x, y)] in integer DBU): the region's polygons as they are (each(), not merged).
+    A layer of more than `spill_over` shapes goes to a mapped file as it is read (Polygons.spill)."""
+    out = Polygons(spill_over)
     for poly in region.each():
         out.add(((p.x, p.y) for p in poly.each_point_hull()),
                 [[(p.x, p.y) for p in poly.each_point_hole(h)] for h in range(poly.holes())])
+    if spill_over is not None and len(out) > spill_over:
+        out.spill()
     return out

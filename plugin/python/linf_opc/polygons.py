@@ -5,19 +5,27 @@ followed by its holes with negative counts. A million rectangles as [(outer, [ho
 take ~700 MB of Python objects; here they take 70 MB. Iterating gives (outer, [holes]) lists,
 so code written for the list form reads it unchanged.
 """
+import tempfile
 from array import array
 
 from . import drawing
 
-# Layers of more shapes than this are spilled (Polygons.spill) once read: the batch's limit.
+# Layers of more shapes than this are spilled (Polygons.spill) as they are read: the batch's limit.
 SPILL_SHAPES = 200000
+# Past the limit, the arrays are written out whenever the points reach this many values (8 MB).
+CHUNK = 1 << 20
 
 
 class Polygons:
-    def __init__(self):
+    def __init__(self, spill_over=None):
+        """spill_over: once more shapes than this are added, the arrays go to temporary files a
+        chunk at a time as they grow, so that a layer of millions of shapes is never all in
+        memory; spill() then maps them. None: they stay in memory (until spill())."""
         self.points = array("q")
         self.rings = array("q")
         self._count = 0
+        self._spill_over = spill_over
+        self._files = None  # (points, rings) temporary files, open while chunks are written
 
     @classmethod
     def of(cls, polygons):
@@ -40,6 +48,8 @@ class Polygons:
         for h in holes:
             self._ring(h, -1)
         self._count += 1
+        if self._spill_over is not None and self._count > self._spill_over and len(self.points) >= CHUNK:
+            self._write_chunk()
 
     def _ring(self, pts, sign):
         n = 0
@@ -49,20 +59,24 @@ class Polygons:
             n += 1
         self.rings.append(sign * n)
 
+    def _write_chunk(self):
+        if self._files is None:  # unlinked at once: they go when closed, also when the process dies
+            self._files = [tempfile.TemporaryFile(prefix="linf_opc-layer-") for _ in range(2)]
+        for f, a in zip(self._files, (self.points, self.rings)):
+            a.tofile(f)
+            del a[:]
+
     def spill(self):
-        """Moves the two arrays into a mapped temporary file, read-only from here on (add() no
-        longer works): a layer of millions of shapes is hundreds of MB, which the kernel may
-        then drop and read again instead of the process holding them to the end of the flow.
-        The core reads them in place either way."""
-        if not self.rings:
+        """Moves the arrays (what is left of them, if chunks went ahead) into mapped temporary
+        files, read-only from here on (add() no longer works): a layer of millions of shapes is
+        hundreds of MB, which the kernel may then drop and read again instead of the process
+        holding them to the end of the flow. The core reads them in place either way."""
+        if not self.rings and self._files is None:
             return
-        path = drawing.temporary("linf_opc-layer-", ".flat")
-        with open(path, "wb") as f:
-            self.points.tofile(f)
-            self.rings.tofile(f)
-        n = 8 * len(self.points)
-        self._map = drawing.mapped(path)
-        self.points, self.rings = memoryview(self._map)[:n].cast("q"), memoryview(self._map)[n:].cast("q")
+        self._write_chunk()
+        files, self._files = self._files, None
+        self._maps = [drawing.mapped_file(f) for f in files]
+        self.points, self.rings = (memoryview(m).cast("q") for m in self._maps)
 
     def flat(self):
         """(points, rings): what the core's *_polygons functions take."""

@@ -12,7 +12,7 @@ from array import array
 from collections.abc import Sequence
 
 from . import core
-from .gauges import TYPES as gauge_types
+from .gauges import TYPES as gauge_types, GaugeTable
 from .records import Records
 
 SIZES = (5, 6, 7, 8)
@@ -117,6 +117,16 @@ class Run:
         """The used gauges, rank order, made on each call: twelve runs of a full layer's windows
         would otherwise hold a Gauge record per window each to the end of the flow."""
         return [self._gauges[i] for i in self._used]
+
+    def used_types_scores(self):
+        """(type indices in TYPES, scores) of the used gauges, rank order: two compact arrays,
+        made from the table's columns without a record per gauge."""
+        g = self._gauges
+        if isinstance(g, GaugeTable):
+            types, scores = g.type_indices(), g.scores()
+        else:  # a list of records (a subset of the table)
+            types, scores = [gauge_types.index(x.type) for x in g], [x.score for x in g]
+        return array("B", (types[i] for i in self._used)), array("d", (scores[i] for i in self._used))
 
     @property
     def failed_spots(self):

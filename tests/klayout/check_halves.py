@@ -1,0 +1,74 @@
+# The two-layouts experiment (Table 5.9, batch.halves_similarity) against a plain reading of it:
+#   klayout -b -r tests/klayout/check_halves.py -rd input=FILE -rd layer=L/D -rd markers=SPEC -rd work=DIR
+# The batch cuts one half at a time, reads it spilled when large and classifies the used gauges
+# from the table's columns. Here both halves are cut at once by KLayout, their gauges computed
+# from plain polygon lists, the used gauges made as records and classified on the highest score
+# of both: the two must give the same classes, counts and S_12, also with every half spilled
+# (polygons.SPILL_SHAPES = 0).
+import os
+import sys
+
+import pya
+
+g = globals()
+repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(repo, "build"))
+sys.path.insert(0, os.path.join(repo, "plugin", "python"))
+
+from linf_opc import batch, gauges, layout, markers as marker_io, polygons, selection  # noqa: E402
+
+failures = []
+
+
+def expect(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL: " + what)
+
+
+def plain(region, markers, pitch, size):
+    box = region.bbox()
+    xm = (box.left + box.right) // 2
+    halves = [region & pya.Region(pya.Box(box.left - 1, box.bottom - 1, xm, box.top + 1)),
+              region & pya.Region(pya.Box(xm, box.bottom - 1, box.right + 1, box.top + 1))]
+    used = []
+    for i, half in enumerate(halves):
+        polys = list(layout.polygons_of(half))
+        ms = [m for m in markers if ((m[0] + m[2]) / 2 < xm) == (i == 0)]
+        if not polys or not ms:
+            used.append([])
+            continue
+        gs = gauges.compute(polys).gauges
+        used.append(selection.study(gs, ms, pitch, sizes=(size,), modes=("A",)).runs[("A", size)].used)
+    top = max([x.score for u in used for x in u] or [1.0])
+    c1, c2 = (selection.classes(u, norm=lambda x: x.score / top) for u in used)
+    return c1, c2, selection.similarity(c1, c2)
+
+
+os.makedirs(g["work"], exist_ok=True)
+args = {"input": g["input"], "layer": g["layer"], "out": g["work"]}
+inp = batch.Input.from_args(args)
+ms = marker_io.load(g["markers"], inp.ly, inp.cell).boxes
+pitch = selection.pitch_of(gauges.compute(inp.polygons).gauges)
+size = 7
+c1, c2, s12 = plain(inp.region, ms, pitch, size)
+expect(c1 and c2, "both halves have used gauges (%d and %d classes): the check needs both" % (len(c1), len(c2)))
+for spill in (polygons.SPILL_SHAPES, 0):
+    polygons.SPILL_SHAPES = spill
+    got = batch.halves_similarity(inp, ms, pitch, size)
+    n1 = {(t, s): n for t, s, n in c1}
+    n2 = {(t, s): n for t, s, n in c2}
+    want = [[t, s, n1.get((t, s), 0), n2.get((t, s), 0)] for t, s in sorted(set(n1) | set(n2))]
+    expect(got["classes"] == want, "spill %d: classes %s, the plain reading %s" % (spill, got["classes"][:5], want[:5]))
+    expect((got["N_t1"], got["N_t2"]) == (sum(n1.values()), sum(n2.values())),
+           "spill %d: N_t %s, the plain reading %s" % (spill, (got["N_t1"], got["N_t2"]),
+                                                        (sum(n1.values()), sum(n2.values()))))
+    expect(abs(got["S_12"] - round(s12, 4)) < 1e-9, "spill %d: S_12 %s, the plain reading %.4f" % (spill, got["S_12"], s12))
+    expect(0 < got["S_12"] <= 100, "S_12 %s in (0, 100]" % got["S_12"])
+    print("spill %d: %d classes, N_t %d + %d, S_12 %.4f" % (spill, len(got["classes"]), got["N_t1"], got["N_t2"],
+                                                            got["S_12"]))
+inp.out.abort()
+if failures:
+    print("%d failure(s)" % len(failures))
+    sys.exit(1)
+print("halves: OK")
