@@ -46,7 +46,7 @@ def plain(region, markers, pitch, size):
 
 
 os.makedirs(g["work"], exist_ok=True)
-args = {"input": g["input"], "layer": g["layer"], "out": g["work"]}
+args = {"input": g["input"], "layer": g["layer"], "out": g["work"], "markers": g["markers"]}
 inp = batch.Input.from_args(args)
 ms = marker_io.load(g["markers"], inp.ly, inp.cell).boxes
 pitch = selection.pitch_of(gauges.compute(inp.polygons).gauges)

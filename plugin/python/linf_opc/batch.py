@@ -57,9 +57,12 @@ def load(args):
     layer, datatype = layer_io.parse_layer(args.get("layer") or "")
     ly = pya.Layout()
     try:
-        ly.read(path)
+        ly.read(path, only_layers([(layer, datatype), marker_io.layer_of(args.get("markers"))]))
     except RuntimeError as e:
         raise UsageError("cannot read %s: %s" % (path, str(e).splitlines()[0]))
+    for i in list(ly.layer_indexes()):  # a layer the map made that the file does not have
+        if all(c.shapes(i).is_empty() for c in ly.each_cell()):
+            ly.delete_layer(i)
     name = args.get("cell")
     if name:
         cell = ly.cell(name)
@@ -74,6 +77,18 @@ def load(args):
     if index is None:
         raise UsageError("layer %d/%d is not in %s" % (layer, datatype, path))
     return ly, cell, index, (layer, datatype)
+
+
+def only_layers(layers):
+    """Reading options for the given (L, D) layers only (None entries ignored): a design file
+    holds dozens of layers, and a command needs its layer and perhaps a marker layer."""
+    opt = pya.LoadLayoutOptions()
+    lm = pya.LayerMap()
+    for i, ld in enumerate(x for x in layers if x is not None):
+        lm.map(pya.LayerInfo(*ld), i)
+    opt.layer_map = lm
+    opt.create_other_layers = False
+    return opt
 
 
 def out_dir(args):

@@ -40,11 +40,22 @@ def _unique(boxes):
     return out, len(boxes) - len(out)
 
 
-def from_layer(cell, layout, spec):
+def layer_of(spec):
+    """(L, D) if the SPEC names a layer of the layout, else None (a file)."""
+    if not spec or spec.lower().endswith((".csv", ".csv@um", ".lyrdb", ".lyrdb@um", ".rdb", ".rdb@um")):
+        return None
     try:
         l, d = (int(v) for v in spec.split("/"))
     except ValueError:
+        return None
+    return l, d
+
+
+def from_layer(cell, layout, spec):
+    ld = layer_of(spec)
+    if ld is None:
         raise MarkerError("marker layer must be L/D, not %r" % spec)
+    l, d = ld
     index = layout.find_layer(l, d)
     if index is None:
         raise MarkerError("marker layer %s is not in the layout" % spec)
