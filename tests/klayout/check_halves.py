@@ -1,10 +1,12 @@
 # The two-layouts experiment (Table 5.9, batch.halves_similarity) against a plain reading of it:
 #   klayout -b -r tests/klayout/check_halves.py -rd input=FILE -rd layer=L/D -rd markers=SPEC -rd work=DIR
-# The batch cuts one half at a time, reads it spilled when large and classifies the used gauges
-# from the table's columns. Here both halves are cut at once by KLayout, their gauges computed
+# The batch reads both halves in one pass, clipping only the polygons across the cut, spills
+# them when large, and classifies the used gauges from the table's columns. Here both halves
+# are cut by KLayout's boolean of the merged layer with each half's box, their gauges computed
 # from plain polygon lists, the used gauges made as records and classified on the highest score
-# of both: the two must give the same classes, counts and S_12, also with every half spilled
-# (polygons.SPILL_SHAPES = 0).
+# of both: the two must give the same classes, counts and S_12, also as a large layer is read
+# (as drawn, not merged by KLayout, and every half spilled: layout.MERGE_IN_KLAYOUT_MAX and
+# polygons.SPILL_SHAPES at 0).
 import os
 import sys
 
@@ -51,23 +53,32 @@ inp = batch.Input.from_args(args)
 ms = marker_io.load(g["markers"], inp.ly, inp.cell).boxes
 pitch = selection.pitch_of(gauges.compute(inp.polygons).gauges)
 size = 7
-c1, c2, s12 = plain(inp.region, ms, pitch, size)
+c1, c2, s12 = plain(layout.region_of(inp.cell, inp.index), ms, pitch, size)
+inp.out.abort()
+box = inp.region.bbox()
+xm = (box.left + box.right) // 2
+crossing = sum(1 for p in inp.region.each() if p.bbox().left < xm < p.bbox().right)
+expect(crossing > 0, "some polygon lies across the cut (x = %d): the check needs one" % xm)
 expect(c1 and c2, "both halves have used gauges (%d and %d classes): the check needs both" % (len(c1), len(c2)))
-for spill in (polygons.SPILL_SHAPES, 0):
-    polygons.SPILL_SHAPES = spill
+inp.out.abort()
+print("%d polygons across the cut" % crossing)
+for large in (False, True):
+    if large:
+        layout.MERGE_IN_KLAYOUT_MAX = polygons.SPILL_SHAPES = 0
+    inp = batch.Input.from_args(args)
     got = batch.halves_similarity(inp, ms, pitch, size)
+    inp.out.abort()
     n1 = {(t, s): n for t, s, n in c1}
     n2 = {(t, s): n for t, s, n in c2}
     want = [[t, s, n1.get((t, s), 0), n2.get((t, s), 0)] for t, s in sorted(set(n1) | set(n2))]
-    expect(got["classes"] == want, "spill %d: classes %s, the plain reading %s" % (spill, got["classes"][:5], want[:5]))
+    expect(got["classes"] == want, "large %s: classes %s, the plain reading %s" % (large, got["classes"][:5], want[:5]))
     expect((got["N_t1"], got["N_t2"]) == (sum(n1.values()), sum(n2.values())),
-           "spill %d: N_t %s, the plain reading %s" % (spill, (got["N_t1"], got["N_t2"]),
+           "large %s: N_t %s, the plain reading %s" % (large, (got["N_t1"], got["N_t2"]),
                                                         (sum(n1.values()), sum(n2.values()))))
-    expect(abs(got["S_12"] - round(s12, 4)) < 1e-9, "spill %d: S_12 %s, the plain reading %.4f" % (spill, got["S_12"], s12))
+    expect(abs(got["S_12"] - round(s12, 4)) < 1e-9, "large %s: S_12 %s, the plain reading %.4f" % (large, got["S_12"], s12))
     expect(0 < got["S_12"] <= 100, "S_12 %s in (0, 100]" % got["S_12"])
-    print("spill %d: %d classes, N_t %d + %d, S_12 %.4f" % (spill, len(got["classes"]), got["N_t1"], got["N_t2"],
+    print("large %s: %d classes, N_t %d + %d, S_12 %.4f" % (large, len(got["classes"]), got["N_t1"], got["N_t2"],
                                                             got["S_12"]))
-inp.out.abort()
 if failures:
     print("%d failure(s)" % len(failures))
     sys.exit(1)

@@ -327,17 +327,17 @@ def halves_similarity(inp, markers, pitch, size):
     """Table 5.9's experiment: the layer cut at the x-midpoint of its extent into two layouts,
     each with its own gauges and the markers whose centre lies on its side; mode A windows of
     `size` pitches; classes on a common normalisation (the highest score of both halves).
-    One half at a time, each read as the layer is (spilled when large) and dropped before the
-    next: on a layer of millions of shapes each half is a whole gauge stage of its own."""
+    Both halves are read in one pass over the layer (spilled when large), each polygon across
+    the cut clipped alone, and their gauges computed one half at a time: on a layer of millions
+    of shapes each half is a whole gauge stage of its own."""
     box = inp.region.bbox()
     xm = (box.left + box.right) // 2
+    halves = list(layer_io.halves_of(inp.region, xm, polygons_io.SPILL_SHAPES))
     used = []  # (type indices, scores) of each half's used gauges
-    for i, (x1, x2) in enumerate(((box.left - 1, xm), (xm, box.right + 1))):
+    for i in range(2):
         ms = [m for m in markers if ((m[0] + m[2]) / 2 < xm) == (i == 0)]
-        half = inp.region & pya.Region(pya.Box(x1, box.bottom - 1, x2, box.top + 1)) if ms else pya.Region()
-        polys = layer_io.polygons_of(half, polygons_io.SPILL_SHAPES)
-        del half
-        if not polys:
+        polys, halves[i] = halves[i], None  # dropped once its gauges are made
+        if not polys or not ms:
             used.append((array("B"), array("d")))
             continue
         gs = gauge_stage.compute(polys, tile=inp.tile).gauges

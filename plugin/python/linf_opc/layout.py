@@ -29,14 +29,41 @@ def region_of(cell, layer_index):
     return region.merged() if region.count() <= MERGE_IN_KLAYOUT_MAX else region
 
 
+def _add(out, poly):
+    out.add(((p.x, p.y) for p in poly.each_point_hull()),
+            [[(p.x, p.y) for p in poly.each_point_hole(h)] for h in range(poly.holes())])
+
+
+def halves_of(region, xm, spill_over=None):
+    """The region cut at x = xm into the polygons left and right of it, two Polygons as
+    polygons_of gives them, in one pass: a polygon on one side goes there as it is, one across
+    the cut is clipped (a boolean of that polygon alone). The same area as `region & box` for
+    each half, without KLayout merging the whole layer for it (the core merges anyway)."""
+    left, right = Polygons(spill_over), Polygons(spill_over)
+    for poly in region.each():
+        b = poly.bbox()
+        if b.right <= xm:
+            _add(left, poly)
+        elif b.left >= xm:
+            _add(right, poly)
+        else:
+            whole = pya.Region(poly)
+            for out, x1, x2 in ((left, b.left, xm), (right, xm, b.right)):
+                for part in (whole & pya.Region(pya.Box(x1, b.bottom, x2, b.top))).each():
+                    _add(out, part)
+    for out in (left, right):
+        if spill_over is not None and len(out) > spill_over:
+            out.spill()
+    return left, right
+
+
 def polygons_of(region, spill_over=None):
     """The core's input, a polygons.Polygons (flat arrays; iterating gives (outer, [holes]) with
     rings as [(x, y)] in integer DBU): the region's polygons as they are (each(), not merged).
     A layer of more than `spill_over` shapes goes to a mapped file as it is read (Polygons.spill)."""
     out = Polygons(spill_over)
     for poly in region.each():
-        out.add(((p.x, p.y) for p in poly.each_point_hull()),
-                [[(p.x, p.y) for p in poly.each_point_hole(h)] for h in range(poly.holes())])
+        _add(out, poly)
     if spill_over is not None and len(out) > spill_over:
         out.spill()
     return out
