@@ -24,7 +24,7 @@ import pya  # noqa: E402
 
 from linf_opc import core, layout, markers as marker_io, selection, split  # noqa: E402
 from linf_opc import gauges as gauge_stage  # noqa: E402
-from linf_opc.polygons import core_input  # noqa: E402
+from linf_opc.polygons import SPILL_SHAPES, core_input  # noqa: E402
 
 g = globals()
 t = {}
@@ -92,7 +92,7 @@ else:
     L, D = layout.parse_layer(g["layer"])
 li = ly.find_layer(L, D)
 region = layout.region_of(cell, li)
-polygons = layout.polygons_of(region)
+polygons = layout.polygons_of(region, SPILL_SHAPES)  # as the batch reads it
 t["load"] = time.perf_counter() - t0
 mark("load")
 threads = int(g.get("threads") or 0)
