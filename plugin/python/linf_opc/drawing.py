@@ -2,8 +2,8 @@
 one run without it). output.copy_drawing puts their shapes into a layout: KLayout reads the
 file and copies its shapes in C++, several times faster than inserting them one by one from
 Python (11-14 us a shape), which on a full layer would take minutes. The gauge columns' file
-(gauges.columns_file) and the layer's spilled arrays (polygons.Polygons.spill) are made,
-mapped and removed here too."""
+(gauges.columns_file) is made, mapped and removed here too, and the layer's spilled arrays
+(polygons.Polygons.spill) are mapped here."""
 import mmap
 import os
 import tempfile
