@@ -45,7 +45,8 @@ plain = pya.Layout()
 plain.read(path)
 whole = layers(plain)
 
-for markers, want in [("100/0", {(1, 0), (100, 0)}), (os.path.join(work, "hotspots.csv"), {(1, 0)}), (None, {(1, 0)})]:
+for markers, want in [("100/0", {(1, 0), (100, 0)}), ("1/0", {(1, 0)}), (os.path.join(work, "hotspots.csv"), {(1, 0)}),
+                      (None, {(1, 0)})]:
     got_ly, cell, index, ld = batch.load({"input": path, "layer": "1/0", "markers": markers})
     got = layers(got_ly)
     expect(set(got) == want, "markers %s: layers read %s, want %s" % (markers, sorted(got), sorted(want)))
