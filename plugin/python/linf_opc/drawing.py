@@ -20,8 +20,7 @@ def mapped(path):
     """The file's bytes as a read-only mmap (b"" if empty); the file is removed at once. The pages
     stay the kernel's to drop and read again: a full layer's arrays are hundreds of MB."""
     try:
-        with open(path, "rb") as f:
-            return mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) if os.fstat(f.fileno()).st_size else b""
+        return mapped_file(open(path, "rb"))
     finally:
         remove(path)
 
