@@ -128,7 +128,7 @@ class GaugeTableColumns(unittest.TestCase):
                     chunked.add(outer, holes)
                 held = len(chunked.points)
                 self.assertEqual(os.listdir(d), [])  # the files are unlinked as they are made
-                chunked.spill()
+                chunked.done()
             finally:
                 tempfile.tempdir, polygons.CHUNK = old_dir, old_chunk
         self.assertLess(held, 8)  # at most a chunk was in memory when the last shape was added
@@ -143,6 +143,7 @@ class GaugeTableColumns(unittest.TestCase):
         few = Polygons(spill_over=len(self.polys))  # not over the limit: stays in memory
         for outer, holes in self.polys:
             few.add(outer, holes)
+        few.done()
         self.assertIsInstance(few.points, array)
         empty = Polygons()
         empty.spill()

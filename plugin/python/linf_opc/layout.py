@@ -51,10 +51,7 @@ def halves_of(region, xm, spill_over=None):
             for out, x1, x2 in ((left, b.left, xm), (right, xm, b.right)):
                 for part in (whole & pya.Region(pya.Box(x1, b.bottom, x2, b.top))).each():
                     _add(out, part)
-    for out in (left, right):
-        if spill_over is not None and len(out) > spill_over:
-            out.spill()
-    return left, right
+    return left.done(), right.done()
 
 
 def polygons_of(region, spill_over=None):
@@ -64,6 +61,4 @@ def polygons_of(region, spill_over=None):
     out = Polygons(spill_over)
     for poly in region.each():
         _add(out, poly)
-    if spill_over is not None and len(out) > spill_over:
-        out.spill()
-    return out
+    return out.done()

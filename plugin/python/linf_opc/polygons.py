@@ -20,7 +20,7 @@ class Polygons:
     def __init__(self, spill_over=None):
         """spill_over: once more shapes than this are added, the arrays go to temporary files a
         chunk at a time as they grow, so that a layer of millions of shapes is never all in
-        memory; spill() then maps them. None: they stay in memory (until spill())."""
+        memory; done() then maps them. None: they stay in memory (until spill())."""
         self.points = array("q")
         self.rings = array("q")
         self._count = 0
@@ -48,8 +48,11 @@ class Polygons:
         for h in holes:
             self._ring(h, -1)
         self._count += 1
-        if self._spill_over is not None and self._count > self._spill_over and len(self.points) >= CHUNK:
+        if len(self.points) >= CHUNK and self._over():
             self._write_chunk()
+
+    def _over(self):
+        return self._spill_over is not None and self._count > self._spill_over
 
     def _ring(self, pts, sign):
         n = 0
@@ -77,6 +80,13 @@ class Polygons:
         files, self._files = self._files, None
         self._maps = [drawing.mapped_file(f) for f in files]
         self.points, self.rings = (memoryview(m).cast("q") for m in self._maps)
+
+    def done(self):
+        """The layer is read: past spill_over it is spilled (spill()), else it stays in memory.
+        Returns self."""
+        if self._over():
+            self.spill()
+        return self
 
     def flat(self):
         """(points, rings): what the core's *_polygons functions take."""
