@@ -12,7 +12,7 @@ from array import array
 from collections.abc import Sequence
 
 from . import core
-from .gauges import TYPES as gauge_types, GaugeTable
+from .gauges import TYPES as gauge_types
 from .records import Records
 
 SIZES = (5, 6, 7, 8)
@@ -120,12 +120,8 @@ class Run:
 
     def used_types_scores(self):
         """(type indices in TYPES, scores) of the used gauges, rank order: two compact arrays,
-        made from the table's columns without a record per gauge."""
-        g = self._gauges
-        if isinstance(g, GaugeTable):
-            types, scores = g.type_indices(), g.scores()
-        else:  # a list of records (a subset of the table)
-            types, scores = [gauge_types.index(x.type) for x in g], [x.score for x in g]
+        made from the table's columns without a record per gauge (the run's gauges a GaugeTable)."""
+        types, scores = self._gauges.type_indices(), self._gauges.scores()
         return array("B", (types[i] for i in self._used)), array("d", (scores[i] for i in self._used))
 
     @property
