@@ -25,6 +25,17 @@ std::array<Box, 4> quarters(const Box& b) {
   return {Box{b.x1, b.y1, mx, my}, Box{mx, b.y1, b.x2, my}, Box{b.x1, my, mx, b.y2}, Box{mx, my, b.x2, b.y2}};
 }
 
+// The two halves of a box across one axis: 1, the lower and the upper half; 2, the left and
+// the right one.
+std::array<Box, 2> halves(const Box& b, int axis) {
+  if (axis == 1) {
+    const double my = 0.5 * (b.y1 + b.y2);
+    return {Box{b.x1, b.y1, b.x2, my}, Box{b.x1, my, b.x2, b.y2}};
+  }
+  const double mx = 0.5 * (b.x1 + b.x2);
+  return {Box{b.x1, b.y1, mx, b.y2}, Box{mx, b.y1, b.x2, b.y2}};
+}
+
 // Liang-Barsky: the parameter interval [t0, t1] of the segment p + t (q - p), t in [0, 1],
 // inside the closed box; false if the segment misses it.
 bool clip_to_box(double px, double py, double qx, double qy, const Box& b, double& t0, double& t1) {

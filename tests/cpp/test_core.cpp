@@ -270,6 +270,46 @@ TEST(Builder, RowOfEqualBoxesFarFromOthers) {
   EXPECT_LT(n, 700000u);
 }
 
+// Tracks of wires 150-1,500 DBU long from near x = 0 to `length`, clipped at `cut`.
+namespace {
+std::vector<Polygon> cut_block(int tracks, Coord length, Coord cut) {
+  std::vector<Polygon> p;
+  std::uint64_t r = 5;
+  auto next = [&r](int n) { r = r * 6364136223846793005ULL + 1442695040888963407ULL; return int((r >> 33) % n); };
+  for (int k = 0; k < tracks; ++k)
+    for (Coord x = next(400); x < std::min(length, cut);) {
+      const Coord w = 150 + next(1350);
+      p.push_back(linf::testing::box(x, k * 100, std::min(x + w, cut), k * 100 + 50));
+      x += w + 50 + next(550);
+    }
+  return p;
+}
+}  // namespace
+
+// Tracks cut on a vertical line, as the two-layouts experiment cuts a layer (check_halves.py):
+// every track ends on the cut, and seen from the right all the ends tie in L-inf over the
+// whole field; only L1 orders them, by the distance along the cut. Quartered, the boxes there
+// stay a few tracks high out to the end of the field, so their number grew with the square of
+// the tracks (subdivision.hpp, tie_axis()). Solved sites on 800 tracks: 2,112,810 before,
+// 730,146 with long boxes cut across (the next test) only, 270,086 with the field's boxes
+// halved along the cut.
+TEST(Builder, TrackEndsAlignedOnACut) {
+  const std::size_t n = solved_sites_of(cut_block(800, 1500, 1000));
+  RecordProperty("solved_sites", int(n));
+  EXPECT_LT(n, 400000u);
+}
+
+// A long layer (a row, a column, a slice): the tasks are cut from its box and are as long as
+// it is, and quartering kept their shape down to the smallest boxes, each keeping the sites
+// near any of its points. Long boxes are now cut across their length first (subdivision.hpp,
+// process_pruned()). Solved sites on a column of 800 tracks, 1,500 DBU long: 970,080 before,
+// 166,830 now.
+TEST(Builder, LongLayerGetsSquareBoxes) {
+  const std::size_t n = solved_sites_of(cut_block(800, 1500, Coord(1) << 30));
+  RecordProperty("solved_sites", int(n));
+  EXPECT_LT(n, 300000u);
+}
+
 // Plain input is held to the layout's range as polygons are (the checker indexes the sites'
 // boxes in 32-bit integers).
 TEST(Sites, PlainInputBeyondTheRangeIsRefused) {
