@@ -132,9 +132,10 @@ class Builder {
   // is at the same L-inf distance, x - x0 say, and only the L1 tie-break, which grows with
   // the distance along the row, tells them apart. Quartering does not thin such a box out
   // along the row's normal, only along the row, so square boxes stay as small as a few
-  // tracks out to the end of the field (boxes, and raw pieces, grow with the square of the
-  // row's length: 7,600 aligned ends took hours). Where every site is affine over the box
-  // with a gradient along one axis, the box is halved across the other axis only.
+  // tracks out to the end of the field: boxes, and raw pieces, grew with the square of the
+  // row's length (7,582 ends on the cut of a five-million-wire block's half had not finished
+  // in 45 minutes). Where every site is affine over the box with its gradient along one axis,
+  // the box is halved across the other axis only.
   // 1: every gradient along x (halve in y), 2: along y (halve in x), 0: neither.
   int tie_axis(const Box& b, const std::vector<int>& keep) const {
     bool along_x = true, along_y = true;
