@@ -530,66 +530,66 @@ PYBIND11_MODULE(linf_opc_core, m) {
   m.def(
       "write_clip_library",
       [](const std::string& path, double dbu, const py::tuple& polygons, int layer, int datatype, int gauges,
-         int windows, int markers, const py::bytes& names, py::buffer window_box, py::buffer lines, py::buffer at,
-         const py::bytes& labels, py::buffer marker_counts, py::buffer marker_boxes) {
+         int windows, int markers, const std::string& prefix, const std::vector<std::string>& type_names,
+         py::buffer window_box, py::buffer lines, py::buffer at, py::buffer ranks, const py::bytes& types,
+         py::buffer values, py::buffer marker_counts, py::buffer marker_boxes) {
         if (py::len(polygons) != 2) throw py::value_error("polygons must be (points, rings) flat arrays");
         const LayerInput layer_input(polygons);
         const FlatPolygons& flat = layer_input.flat();
         const py::buffer_info wi = window_box.request(), li = lines.request(), ai = at.request(),
-                              ci = marker_counts.request();
+                              ri = ranks.request(), ci = marker_counts.request();
         const std::int64_t* w = int64s_of(wi, "windows");
         const std::int64_t* ln = int64s_of(li, "lines");
         const std::int64_t* a = int64s_of(ai, "at");
+        const std::int64_t* rk = int64s_of(ri, "ranks");
         const std::int64_t* mc = int64s_of(ci, "marker_counts");
+        const Doubles v = doubles_of(values, 4, "values");
         const Doubles mb = doubles_of(marker_boxes, 4, "markers");
-        // One line a clip; views into the bytes, which the caller holds through the call.
-        auto lines_of = [](const py::bytes& text) {
-          std::vector<std::string_view> out;
-          std::string_view rest(PyBytes_AS_STRING(text.ptr()), std::size_t(PyBytes_GET_SIZE(text.ptr())));
-          while (!rest.empty()) {
-            const std::size_t end = rest.find('\n');
-            if (end == std::string_view::npos) throw py::value_error("names and labels end each with a newline");
-            out.push_back(rest.substr(0, end));
-            rest.remove_prefix(end + 1);
-          }
-          return out;
-        };
-        const std::vector<std::string_view> name = lines_of(names), label = lines_of(labels);
-        const std::size_t n = name.size();
+        const std::string_view ty(PyBytes_AS_STRING(types.ptr()), std::size_t(PyBytes_GET_SIZE(types.ptr())));
+        const std::size_t n = ty.size();
         if (std::size_t(wi.shape[0]) != 4 * n || std::size_t(li.shape[0]) != 4 * n || std::size_t(ai.shape[0]) != 2 * n ||
-            label.size() != n || std::size_t(ci.shape[0]) != n)
-          throw py::value_error("one name, window, line, label position, label and marker count a clip");
-        std::vector<Clip> clips(n);
-        std::size_t m = 0;
+            std::size_t(ri.shape[0]) != n || v.size() != 4 * n || std::size_t(ci.shape[0]) != n)
+          throw py::value_error("one window, line, label position, rank, type, 4 values and marker count a clip");
+        std::vector<std::size_t> first_marker(n + 1, 0);
         for (std::size_t i = 0; i < n; ++i) {
-          Clip& c = clips[i];
-          c.name = name[i];
-          c.label = label[i];
+          if (static_cast<unsigned char>(ty[i]) >= type_names.size()) throw py::value_error("a type beyond type_names");
+          if (mc[i] < 0) throw py::value_error("a negative marker count");
+          first_marker[i + 1] = first_marker[i] + std::size_t(mc[i]);
+        }
+        if (4 * first_marker[n] != mb.size()) throw py::value_error("the marker boxes do not match the counts");
+        ClipLayers l;
+        l.layer = layer, l.datatype = datatype, l.gauges = gauges, l.windows = windows, l.markers = markers;
+        auto clip_at = [&](std::size_t i, Clip& c) {
+          // As the plugin computed them: g.score * dbu and so on, then "%.4f" / "%.4g".
+          const ClipGauge g{rk[i], type_names[static_cast<unsigned char>(ty[i])], v[4 * i + 1] * dbu,
+                            v[4 * i] * dbu, v[4 * i + 2], v[4 * i + 3] * dbu};
+          c.name = clip_name(prefix, g);
+          c.label = clip_label(g);
           for (int k = 0; k < 4; ++k) c.window[k] = w[4 * i + k], c.line[k] = ln[4 * i + k];
           c.at = {a[2 * i], a[2 * i + 1]};
-          for (std::int64_t j = 0; j < mc[i]; ++j, ++m) {
-            if (4 * m + 3 >= mb.size()) throw py::value_error("fewer marker boxes than the counts say");
+          c.markers.clear();
+          for (std::size_t m = first_marker[i]; m < first_marker[i + 1]; ++m) {
             // As KLayout rounds a box given in micrometres (half away from zero).
             std::array<std::int64_t, 4> box{};
             for (int k = 0; k < 4; ++k) box[k] = std::llround(mb[4 * m + k] * dbu / dbu);
             c.markers.push_back(box);
           }
-        }
-        if (4 * m != mb.size()) throw py::value_error("more marker boxes than the counts say");
-        ClipLayers l;
-        l.layer = layer, l.datatype = datatype, l.gauges = gauges, l.windows = windows, l.markers = markers;
+        };
         py::gil_scoped_release unlocked;
-        return write_clip_library(path, dbu, flat, l, clips);
+        return write_clip_library(path, dbu, flat, l, n, clip_at);
       },
       py::arg("path"), py::arg("dbu"), py::arg("polygons"), py::arg("layer"), py::arg("datatype"), py::arg("gauges"),
-      py::arg("windows"), py::arg("markers"), py::arg("names"), py::arg("window_boxes"), py::arg("lines"),
-      py::arg("at"), py::arg("labels"), py::arg("marker_counts"), py::arg("marker_boxes"),
+      py::arg("windows"), py::arg("markers"), py::arg("prefix"), py::arg("type_names"), py::arg("window_boxes"),
+      py::arg("lines"), py::arg("at"), py::arg("ranks"), py::arg("types"), py::arg("values"),
+      py::arg("marker_counts"), py::arg("marker_boxes"),
       "Writes a clip library as OASIS, one cell a clip: the layer's polygons (flat (points, rings) arrays, as\n"
       "drawn) merged and cut to the clip's window on layer/datatype; its measurement line (a zero-width path) and\n"
-      "label (a text) on datatype `gauges`, the window outline on `windows`, its markers on `markers`. names,\n"
-      "labels: bytes, one line a clip, each ending with a newline; window_boxes, lines: array('q') x1, y1, x2, y2 a clip (DBU); at: array('q') x, y a\n"
-      "clip (the label); marker_counts: array('q') a clip; marker_boxes: array('d') x1, y1, x2, y2 (DBU), the\n"
-      "clips' markers in turn. Returns the number of shapes written.");
+      "label (a text) on datatype `gauges`, the window outline on `windows`, its markers on `markers`. Cells are\n"
+      "named PREFIX_rRANK_TYPE_SCORE. A clip's gauge: ranks array('q'), types bytes (an index into type_names a\n"
+      "clip), values array('d') score, cd, norm_score, tiebreak a clip (DBU but norm_score); window_boxes, lines:\n"
+      "array('q') x1, y1, x2, y2 a clip (DBU); at: array('q') x, y a clip (the label); marker_counts: array('q') a\n"
+      "clip; marker_boxes: array('d') x1, y1, x2, y2 (DBU), the clips' markers in turn. Returns the number of\n"
+      "shapes written.");
 
   m.def(
       "oasis_from_drawing",

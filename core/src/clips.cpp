@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace linf {
@@ -12,20 +13,45 @@ namespace linf {
 namespace bp = boost::polygon;
 using BPoint = bp::point_data<int>;
 
+// The plugin named and labelled clips with Python's "%.4f" and "%.4g": C's printf rounds the
+// same double the same way (both exactly), so the files stay as they were.
+std::string clip_name(std::string_view set_prefix, const ClipGauge& g) {
+  char score[64];
+  std::snprintf(score, sizeof score, "%.4f", g.score_um);
+  std::string s = score;
+  std::replace(s.begin(), s.end(), '.', 'p');
+  std::replace(s.begin(), s.end(), '-', 'm');
+  char rank[32];
+  std::snprintf(rank, sizeof rank, "%06lld", static_cast<long long>(g.rank));
+  return std::string(set_prefix) + "_r" + rank + "_" + std::string(g.type) + "_" + s;
+}
+
+std::string clip_label(const ClipGauge& g) {
+  const std::string type(g.type);
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "#%lld %s cd=%.4g score=%.4g norm=%.4g tiebreak=%.4g", static_cast<long long>(g.rank),
+                type.c_str(), g.cd_um, g.score_um, g.norm_score, g.tiebreak_um);
+  return buf;
+}
+
 std::size_t write_clip_library(const std::string& path, double dbu, const FlatPolygons& layer,
-                               const ClipLayers& l, const std::vector<Clip>& clips) {
+                               const ClipLayers& l, std::size_t count, const ClipSource& clip_at) {
   using namespace bp::operators;
-  if (clips.empty()) throw std::invalid_argument("a clip library needs at least one clip");
+  if (count == 0) throw std::invalid_argument("a clip library needs at least one clip");
   const PolygonIndex ix(layer);
   const BoxTree tree(ix.size(), [&](std::size_t i) { return ix.box(i); });
-  OasisWriter w(path, dbu, std::string(clips.front().name));
+  Clip clip;
+  clip_at(0, clip);
+  OasisWriter w(path, dbu, clip.name);
   w.layer_name("gauges", l.layer, l.gauges);
   w.layer_name("windows", l.layer, l.windows);
   w.layer_name("markers", l.layer, l.markers);
   std::size_t shapes = 0;
-  for (std::size_t c = 0; c < clips.size(); ++c) {
-    const Clip& clip = clips[c];
-    if (c > 0) w.cell(std::string(clip.name));
+  for (std::size_t c = 0; c < count; ++c) {
+    if (c > 0) {
+      clip_at(c, clip);
+      w.cell(clip.name);
+    }
     const auto& b = clip.window;
     // The shapes that meet the window, merged and cut to it (KLayout: layer & window).
     bp::polygon_set_data<int> set;
@@ -53,7 +79,7 @@ std::size_t write_clip_library(const std::string& path, double dbu, const FlatPo
       w.polygon(l.layer, l.datatype, r), ++shapes;
     }
     w.path(l.layer, l.gauges, clip.line[0], clip.line[1], clip.line[2], clip.line[3]);
-    w.text(l.layer, l.gauges, clip.at[0], clip.at[1], std::string(clip.label));
+    w.text(l.layer, l.gauges, clip.at[0], clip.at[1], clip.label);
     w.polygon(l.layer, l.windows, box_ring(clip.window));
     for (const auto& m : clip.markers) w.polygon(l.layer, l.markers, box_ring(m));
     shapes += 3 + clip.markers.size();

@@ -9,6 +9,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,23 +19,38 @@
 
 namespace linf {
 
-// The name and the label are views into the caller's text: a full layer's split has hundreds
-// of thousands of clips, and a string of each, held twice, was most of the writer's memory.
 struct Clip {
-  std::string_view name;
+  std::string name;                      // the cell's (clip_name)
   std::array<std::int64_t, 4> window{};  // x1, y1, x2, y2 (DBU): the clip boundary
   std::array<std::int64_t, 4> line{};    // the measurement line's ends
   std::array<std::int64_t, 2> at{};      // where its label goes
-  std::string_view label;
+  std::string label;                     // clip_label
   std::vector<std::array<std::int64_t, 4>> markers;
 };
+
+// What names and labels a clip: its gauge's rank, type and values (micrometres).
+struct ClipGauge {
+  std::int64_t rank = 0;
+  std::string_view type;
+  double cd_um = 0, score_um = 0, norm_score = 0, tiebreak_um = 0;
+};
+// SET_rRANK_TYPE_SCORE, e.g. CAL_r000042_sandwich_0p0245 (the score in um to 4 decimals,
+// '.' -> 'p', '-' -> 'm'): a cell name KLayout and OPC tools take as it is.
+std::string clip_name(std::string_view set_prefix, const ClipGauge& g);
+// "#RANK TYPE cd=.. score=.. norm=.. tiebreak=.." (4 significant digits), beside the line.
+std::string clip_label(const ClipGauge& g);
 
 struct ClipLayers {
   int layer = 0, datatype = 0;          // the clipped shapes
   int gauges = 210, windows = 220, markers = 230;  // datatypes on `layer`
 };
 
+// Clip i, asked for in order, i = 0 .. count - 1. A full layer's split has hundreds of
+// thousands of clips: each is made, written and let go, so only the caller's plain columns
+// are held (a name and a label of each, as text, were most of the writer's memory).
+using ClipSource = std::function<void(std::size_t i, Clip& clip)>;
+
 std::size_t write_clip_library(const std::string& path, double dbu, const FlatPolygons& layer,
-                               const ClipLayers& layers, const std::vector<Clip>& clips);
+                               const ClipLayers& layers, std::size_t count, const ClipSource& clip_at);
 
 }  // namespace linf

@@ -7,7 +7,6 @@ Each clip cell holds, in layout coordinates (so that it overlays the source):
   L/230   the markers that meet the window.
 Cells are named SET_rRANK_TYPE_SCORE, e.g. CAL_r000042_sandwich_0p0245 (score in µm, '.' -> 'p').
 """
-import io
 from array import array
 
 import pya
@@ -26,34 +25,24 @@ def window_box(b):
     return pya.Box(int(round(b[0])), int(round(b[1])), int(round(b[2])), int(round(b[3])))
 
 
-def cell_name(which, g, dbu):
-    score = ("%.4f" % (g.score * dbu)).replace(".", "p").replace("-", "m")
-    return "%s_r%06d_%s_%s" % (PREFIX[which], g.rank, g.type, score)
-
-
-def label(g, dbu):
-    """The text beside a clip's measurement line."""
-    return ("#%d %s cd=%.4g score=%.4g norm=%.4g tiebreak=%.4g"
-            % (g.rank, g.type, g.cd * dbu, g.score * dbu, g.norm_score, g.tiebreak * dbu))
-
-
 def write_library(path, which, patterns, polygons, layer, datatype, dbu):
     """Writes the clips of one set, cut from the layer's polygons (polygons.Polygons, as drawn);
     returns the number of clips. The core writes the file: a library of hundreds of thousands of
     clips built in a KLayout layout kept about 2 KB a cell even after the layout was deleted. The
-    cells' names and labels go to it as one text each, a line a clip (a string each, in a list,
-    was most of this step's memory on a full layer)."""
+    core also names and labels the cells (linf::clip_name, clip_label) from the gauges' numbers:
+    their text, made here, was most of this step's memory on a full layer."""
     if not patterns:
         lib = pya.Layout()
         lib.dbu = dbu
         output.save(lib, path)
         return 0
     windows, lines, at, counts, markers = array("q"), array("q"), array("q"), array("q"), array("d")
-    names, labels = io.StringIO(), io.StringIO()
+    ranks, types, values, type_index = array("q"), bytearray(), array("d"), {}
     for p in patterns:
         g = p.gauge
-        names.write(cell_name(which, g, dbu) + "\n")
-        labels.write(label(g, dbu) + "\n")
+        ranks.append(g.rank)
+        types.append(type_index.setdefault(g.type, len(type_index)))
+        values.extend((g.score, g.cd, g.norm_score, g.tiebreak))
         b = window_box(p.box)
         windows.extend((b.left, b.bottom, b.right, b.top))
         lines.extend((round(g.x1), round(g.y1), round(g.x2), round(g.y2)))
@@ -62,6 +51,6 @@ def write_library(path, which, patterns, polygons, layer, datatype, dbu):
         for m in p.markers:
             markers.extend(m[:4])
     core.write_clip_library(path, dbu, core_input(polygons), layer, datatype, GAUGE_DATATYPE, WINDOW_DATATYPE,
-                            MARKER_DATATYPE, names.getvalue().encode(), windows, lines, at, labels.getvalue().encode(),
-                            counts, markers)
+                            MARKER_DATATYPE, PREFIX[which], list(type_index), windows, lines, at, ranks,
+                            bytes(types), values, counts, markers)
     return len(counts)
