@@ -34,6 +34,7 @@ if "--shared" in args:
     inputs += [(os.path.join(data, "openilt", "gcd_45nm.gds"), "11/0", None, None),
                (os.path.join(data, "ihp", "sg13g2_stdcell.gds"), "8/0", "sg13g2_dfrbp_1", None),
                (os.path.join(data, "freepdk45", "sram_8_128_freepdk45.gds"), "11/0", None, None)]
+    inputs += [(os.path.join(data, "openilt", "M1_test%d.glp" % k), "1/0", None, None) for k in range(1, 11)]
 
 
 def one(inp, layer, cell, markers, threads, drc, polygons_json=None):

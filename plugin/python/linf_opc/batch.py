@@ -30,6 +30,7 @@ from . import clips
 from . import diagram as diagram_stage
 from . import farthest as farthest_stage
 from . import gauge_output
+from . import glp
 from . import gauges as gauge_stage
 from . import layout as layer_io
 from . import markers as marker_io
@@ -55,9 +56,14 @@ def load(args):
     if not os.path.isfile(path):
         raise UsageError("input file not found: %s" % path)
     layer, datatype = layer_io.parse_layer(args.get("layer") or "")
-    ly = pya.Layout()
     try:
-        ly.read(path, only_layers([(layer, datatype), marker_io.layer_of(args.get("markers"))]))
+        if glp.is_glp(path):  # a contest clip (text), which KLayout does not read
+            ly = glp.read(path)
+        else:
+            ly = pya.Layout()
+            ly.read(path, only_layers([(layer, datatype), marker_io.layer_of(args.get("markers"))]))
+    except glp.GlpError as e:
+        raise UsageError("cannot read %s" % e)
     except RuntimeError as e:
         raise UsageError("cannot read %s: %s" % (path, str(e).splitlines()[0]))
     for i in list(ly.layer_indexes()):  # a layer the map made that the file does not have
