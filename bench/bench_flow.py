@@ -4,7 +4,8 @@
 # of the same polygons (its own process, with a deadline: it can hang or crash) and against
 # KLayout's width + space checks (metrics Square) on the same layer.
 #   python3 bench/bench_flow.py [--generated 10000,100000,1000000] [--shared] [--threads]
-#                               [--tile DBU] [--deadline SECONDS] [--no-reach]
+#                               [--tile DBU] [--deadline SECONDS] [--no-reach] [--match TEXT]
+# --match keeps the inputs whose name contains TEXT (--shared --match glp: the ten contest clips).
 # --threads adds the diagram with one thread against two (inputs up to 20,000 polygons).
 # KLayout's checks run at the gauges' own reach (see flow_one.py; the goal's comparison, README
 # "Which threshold") and at 2 x the narrowest width; --no-reach leaves the first out.
@@ -35,6 +36,8 @@ if "--shared" in args:
                (os.path.join(data, "ihp", "sg13g2_stdcell.gds"), "8/0", "sg13g2_dfrbp_1", None),
                (os.path.join(data, "freepdk45", "sram_8_128_freepdk45.gds"), "11/0", None, None)]
     inputs += [(os.path.join(data, "openilt", "M1_test%d.glp" % k), "1/0", None, None) for k in range(1, 11)]
+if "--match" in args:
+    inputs = [i for i in inputs if opt("--match", "") in os.path.basename(i[0])]
 
 
 def one(inp, layer, cell, markers, threads, drc, polygons_json=None):
