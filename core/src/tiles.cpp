@@ -133,7 +133,34 @@ int task_level(std::size_t n) {
   return level;
 }
 
-constexpr std::size_t kAutoTileSites = std::size_t(1) << 16;
+// A tile's own sites; its halo adds a third to a half more (a block of tracks).
+constexpr std::size_t kAutoTileSites = std::size_t(1) << 15;
+
+// The sites (by their box's centre) in each of the n x n tasks of root, row by row.
+std::vector<std::uint32_t> sites_per_task(const SiteList& sites, const Box& root, std::size_t n) {
+  std::vector<std::uint32_t> count(n * n, 0);
+  const double cw = (root.x2 - root.x1) / double(n), ch = (root.y2 - root.y1) / double(n);
+  auto cell = [&](double v, double lo, double w) {
+    return std::size_t(std::clamp(std::floor((v - lo) / w), 0.0, double(n - 1)));
+  };
+  for (const Site& t : sites)
+    ++count[cell(0.5 * (double(t.a.y) + double(t.b.y)), root.y1, ch) * n +
+            cell(0.5 * (double(t.a.x) + double(t.b.x)), root.x1, cw)];
+  return count;
+}
+
+// The most sites in one block of k x k tasks: the fullest tile's own sites, before its halo.
+std::size_t fullest_tile(const std::vector<std::uint32_t>& per_task, std::size_t n, std::size_t k) {
+  std::size_t most = 0;
+  for (std::size_t bj = 0; bj < n; bj += k)
+    for (std::size_t bi = 0; bi < n; bi += k) {
+      std::size_t in = 0;
+      for (std::size_t j = bj; j < bj + k; ++j)
+        for (std::size_t i = bi; i < bi + k; ++i) in += per_task[j * n + i];
+      most = std::max(most, in);
+    }
+  return most;
+}
 
 }  // namespace
 
@@ -141,15 +168,23 @@ void build_tiled(const SiteList& sites, const Box& root, const BuildOptions& opt
                  const PartSink& sink) {
   const int T = task_level(sites.size());
   const std::size_t nt = std::size_t(1) << T;
+  const SiteGrid grid(sites, root, T + 1);  // buckets finer than tasks: tighter halos
   int Lt = 0;  // tile level: the coarsest whose boxes are no larger than the tile size
   const double side = std::max(root.x2 - root.x1, root.y2 - root.y1);
   if (opt.tile_size > 0)
     while (Lt < T && side / double(std::size_t(1) << Lt) > opt.tile_size) ++Lt;
-  else if (opt.tile_size < 0)  // automatic: about kAutoTileSites sites a tile
-    while (Lt < T && (std::size_t(1) << (2 * Lt)) * kAutoTileSites < sites.size()) ++Lt;
+  else if (opt.tile_size < 0) {
+    // Automatic: the coarsest level whose fullest tile holds at most kAutoTileSites sites of
+    // its own. A tile's working memory grows with its sites (about 2 KB a site), so the fullest
+    // one sets the stage's peak; 2^16 sites a tile on average over the layer's box let it
+    // double with the layer's shape and with where its size fell between two levels (the half
+    // of a block, twice as tall as wide: 77,645 sites in its fullest tile with the halo and
+    // 254 MB over the stage's base, where the whole block's fullest tile had 34,950 and 154 MB).
+    const std::vector<std::uint32_t> per_task = sites_per_task(sites, root, nt);
+    while (Lt < T && fullest_tile(per_task, nt, std::size_t(1) << (T - Lt)) > kAutoTileSites) ++Lt;
+  }
   const std::size_t per = std::size_t(1) << (T - Lt), ntiles = std::size_t(1) << Lt;
   const std::vector<Box> tasks = grid_boxes(root, T);
-  const SiteGrid grid(sites, root, T + 1);  // buckets finer than tasks: tighter halos
 
   std::vector<std::vector<int>> halo(per * per);
   struct Scratch { Paged<std::uint32_t> seen; std::uint32_t stamp = 0; };  // one entry a site

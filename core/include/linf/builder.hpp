@@ -34,7 +34,7 @@ struct BuildOptions {
                               // border's owners only (off: one pass over the clip box)
   double tile_size = 0;       // DBU; > 0: build the sites' box tile by tile, holding one tile's
                               // sites at a time (same pieces for every size; see tiles.hpp);
-                              // < 0: automatic, about 2^16 sites a tile
+                              // < 0: automatic, at most 2^15 sites of its own in the fullest tile
 };
 
 struct BuildStats {
