@@ -121,3 +121,30 @@ TEST(Tiles, IsolatedShapesFarApart) {
   o.build = tiled;
   EXPECT_TRUE(voronoi_of_polygons(p, o).check.ok());
 }
+
+// Automatic tiles are chosen by the fullest tile, not by the layer's average: a dense array in
+// one quadrant of an otherwise empty box (39,224 sites; 2^16 a tile on average made one tile
+// of the whole layer) is cut until no tile holds more than 2^15 sites of its own. A tile's
+// working memory grows with its sites.
+TEST(Tiles, AutomaticTilesBoundTheFullestTile) {
+  std::vector<Polygon> p;
+  for (int j = 0; j < 70; ++j)
+    for (int i = 0; i < 70; ++i) p.push_back(linf::testing::box(100 * i, 100 * j, 100 * i + 50, 100 * j + 50));
+  for (auto [x, y] : {std::pair{13950, 0}, std::pair{0, 13950}, std::pair{13950, 13950}})
+    p.push_back(linf::testing::box(x, y, x + 50, y + 50));
+  const Sites s = sites_of_polygons(merge_polygons(p));
+  const Box clip = clip_box(s);
+  BuildOptions whole;
+  whole.threads = 2;
+  const std::vector<Key> ref = keys(build_pieces(s, clip, whole));
+  BuildOptions automatic = whole;
+  automatic.tile_size = -1;
+  BuildStats st;
+  const std::vector<Key> got = keys(build_pieces(s, clip, automatic, &st));
+  // 2 x 2 tiles leave the array whole in one; 4 x 4 cut it in four. A tile's halo reaches into
+  // the array from the empty field around it, so the fullest holds about half the sites.
+  EXPECT_EQ(st.tiles, 16u);
+  EXPECT_LT(st.largest_tile_sites, 6 * s.sites.size() / 10) << st.tiles << " tiles";
+  ASSERT_EQ(got.size(), ref.size());
+  EXPECT_TRUE(got == ref);
+}
