@@ -168,7 +168,6 @@ void build_tiled(const SiteList& sites, const Box& root, const BuildOptions& opt
                  const PartSink& sink) {
   const int T = task_level(sites.size());
   const std::size_t nt = std::size_t(1) << T;
-  const SiteGrid grid(sites, root, T + 1);  // buckets finer than tasks: tighter halos
   int Lt = 0;  // tile level: the coarsest whose boxes are no larger than the tile size
   const double side = std::max(root.x2 - root.x1, root.y2 - root.y1);
   if (opt.tile_size > 0)
@@ -185,6 +184,7 @@ void build_tiled(const SiteList& sites, const Box& root, const BuildOptions& opt
   }
   const std::size_t per = std::size_t(1) << (T - Lt), ntiles = std::size_t(1) << Lt;
   const std::vector<Box> tasks = grid_boxes(root, T);
+  const SiteGrid grid(sites, root, T + 1);  // buckets finer than tasks: tighter halos
 
   std::vector<std::vector<int>> halo(per * per);
   struct Scratch { Paged<std::uint32_t> seen; std::uint32_t stamp = 0; };  // one entry a site
