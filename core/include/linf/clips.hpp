@@ -46,9 +46,9 @@ struct ClipLayers {
 };
 
 // Sets every field of clip i (the same Clip is passed again and again), asked for in order,
-// i = 0 .. count - 1. A full layer's split has hundreds of
-// thousands of clips: each is made, written and let go, so only the caller's plain columns
-// are held (a name and a label of each, as text, were most of the writer's memory).
+// i = 0 .. count - 1. A full layer's split has hundreds of thousands of clips: each is made,
+// written and let go, so only the caller's plain columns are held (a name and a label of
+// each, as text, were most of the writer's memory).
 using ClipSource = std::function<void(std::size_t i, Clip& clip)>;
 
 std::size_t write_clip_library(const std::string& path, double dbu, const FlatPolygons& layer,
