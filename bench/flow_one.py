@@ -22,7 +22,7 @@ sys.path.insert(0, os.path.join(repo, "plugin", "python"))
 
 import pya  # noqa: E402
 
-from linf_opc import core, glp, layout, markers as marker_io, selection, split  # noqa: E402
+from linf_opc import core, layout, markers as marker_io, selection, split  # noqa: E402
 from linf_opc import gauges as gauge_stage  # noqa: E402
 from linf_opc.polygons import SPILL_SHAPES, core_input  # noqa: E402
 
@@ -86,11 +86,7 @@ if g["input"].startswith("generated:"):
     ly, cell = generated(int(g["input"].split(":")[1]))
     L, D = 1, 0
 else:
-    if glp.is_glp(g["input"]):  # an ICCAD 2013 contest clip, in text
-        ly = glp.read(g["input"])
-    else:
-        ly = pya.Layout()
-        ly.read(g["input"])
+    ly = layout.read_layout(g["input"])  # GLP contest clips too
     cell = ly.cell(g["cell"]) if g.get("cell") else ly.top_cells()[0]
     L, D = layout.parse_layer(g["layer"])
 li = ly.find_layer(L, D)

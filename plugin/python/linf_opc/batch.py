@@ -57,11 +57,7 @@ def load(args):
         raise UsageError("input file not found: %s" % path)
     layer, datatype = layer_io.parse_layer(args.get("layer") or "")
     try:
-        if glp.is_glp(path):  # a contest clip (text), which KLayout does not read
-            ly = glp.read(path)
-        else:
-            ly = pya.Layout()
-            ly.read(path, only_layers([(layer, datatype), marker_io.layer_of(args.get("markers"))]))
+        ly = layer_io.read_layout(path, only_layers([(layer, datatype), marker_io.layer_of(args.get("markers"))]))
     except glp.GlpError as e:
         raise UsageError("cannot read %s" % e)
     except RuntimeError as e:

@@ -1,7 +1,22 @@
 """Reading a layer of a KLayout layout as plain polygons (the flow's input contract)."""
 import pya
 
+from . import glp
 from .polygons import Polygons
+
+
+def read_layout(path, options=None):
+    """The layout in `path`: a GLP contest clip (glp.py; KLayout does not read GLP, and
+    `options` do not apply), else as KLayout reads it with `options` (pya.LoadLayoutOptions).
+    Raises glp.GlpError or KLayout's RuntimeError."""
+    if glp.is_glp(path):
+        return glp.read(path)
+    ly = pya.Layout()
+    if options is None:
+        ly.read(path)
+    else:
+        ly.read(path, options)
+    return ly
 
 
 def parse_layer(text):
