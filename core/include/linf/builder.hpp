@@ -39,6 +39,7 @@ struct BuildOptions {
 
 struct BuildStats {
   std::size_t boxes = 0, solves = 0, solved_sites = 0, cells = 0, raw_pieces = 0;
+  std::size_t solved_pairs = 0;  // the local solves' sizes squared, summed: their cost grows so
   std::size_t tiles = 0, tasks = 0, largest_tile_sites = 0;
 };
 
