@@ -64,7 +64,35 @@ class Builder {
     for (int t : cand)
       if (box_distance(b, S_[t]) <= U + tau_ && !m_.dominated(ref, t)) keep.push_back(t);
     if (keep.size() > 2) prune_ties(b, keep);
+    if (keep.size() > 2 && int(keep.size()) <= opt_.paired_sites) prune_dominated(b, keep);
     return keep;
+  }
+
+  // A site that the one reference does not dominate may still be dominated by another
+  // candidate: one of a row's far line ends, seen past its near ones; a corner behind a near
+  // edge. Half the sites of the SRAM's local solves owned nothing in them. So in small boxes
+  // every candidate is tried as the reference, first by the ownership rule at the box's
+  // centre, which a dominating site must pass. Dominance is transitive, so a site dominated by
+  // one that goes itself is dominated by what removes that one.
+  void prune_dominated(const Box& b, std::vector<int>& keep) const {
+    const std::size_t n = keep.size();
+    const Vec2 c{0.5 * (b.x1 + b.x2), 0.5 * (b.y1 + b.y2)};
+    const double e = m_.tol(c);
+    boost::container::small_vector<double, 32> fc(n), gc(n);
+    for (std::size_t i = 0; i < n; ++i) fc[i] = f_[keep[i]].at(c.x, c.y), gc[i] = g_[keep[i]].at(c.x, c.y);
+    boost::container::small_vector<Model::Reference, 32> refs(n);
+    std::vector<int> kept;
+    kept.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      bool dominated = false;
+      for (std::size_t j = 0; j < n && !dominated; ++j) {
+        if (j == i || !(fc[i] > fc[j] + e || (fc[i] >= fc[j] - e && gc[i] > gc[j] + e))) continue;
+        if (refs[j].u < 0) refs[j] = m_.reference(b, keep[j]);
+        dominated = m_.dominated(refs[j], keep[i]);
+      }
+      if (!dominated) kept.push_back(keep[i]);
+    }
+    keep.swap(kept);
   }
 
   void process(const Box& b, const std::vector<int>& cand) {
