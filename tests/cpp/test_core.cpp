@@ -278,7 +278,7 @@ TEST(Builder, RowOfEqualBoxesFarFromOthers) {
 // them was solved whole, at the square of its sites, where halves thin them out
 // (process_pruned(), halve_across_ties()). Cells 34,822 before, 4,224 with the first change
 // alone, 6,581 with both; the local solves' sizes squared, their cost, 2,094,857, 1,570,761 and
-// 805,461 (6,339 cells and 604,085 with every candidate a reference in small boxes, below).
+// 805,461 (6,339 cells and 604,085 with every site a reference in small solves, below).
 TEST(Builder, RowCornerSeenAlongTheDiagonal) {
   std::vector<Polygon> p{linf::testing::box(40000, 0, 40010, 10), linf::testing::box(0, 40000, 10, 40010),
                          linf::testing::box(40000, 40000, 40010, 40010)};
@@ -335,8 +335,8 @@ TEST(Builder, LongLayerGetsSquareBoxes) {
 
 // Half the sites of the SRAM's local solves owned nothing in them: a far line end behind a
 // near one, a corner behind an edge, each beaten by some other candidate that the one
-// reference of the box is not. In boxes of at most BuildOptions::paired_sites candidates every
-// candidate is tried as the reference (subdivision.hpp, prune_dominated()). On a block of 40
+// reference of the box is not. In local solves of at most BuildOptions::paired_sites sites
+// every site is tried as the reference (subdivision.hpp, prune_dominated()). On a block of 40
 // tracks: the same pieces (per owner pair, the same total length), far fewer solved sites.
 TEST(Builder, EveryCandidateIsAReferenceInSmallBoxes) {
   const std::vector<Polygon> p = cut_block(40, 3000, Coord(1) << 30);

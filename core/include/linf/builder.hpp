@@ -28,7 +28,7 @@ struct BuildOptions {
   int affine_sites = 48;     // or at most this many of which
   int bent_sites = 6;         // at most this many are not affine over the box,
   int crowded_sites = 160;    // or at most this many when quartering would not thin them out
-  int paired_sites = 16;      // in boxes of at most this many, every candidate is a reference
+  int paired_sites = 16;      // in solves of at most this many sites, each is a dominance reference
   double min_box = 1.0 / 64;  // never cut a box below this side (DBU)
   int threads = 0;            // workers; 0: one per hardware thread
   bool far_field_pass = true; // build beyond the sites' bounding box in a second pass with the
