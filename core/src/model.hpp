@@ -96,13 +96,11 @@ struct Model {
     return a < b;
   }
 
-  // The reference u's values at the corners of the grown box, computed once per box: its
-  // L-inf and L1 distances, and each piece of its L-inf distance.
+  // The reference u's values at the corners of the grown box, computed once per box.
   struct Reference {
     int u = -1;
     Vec2 c[4];
     double fu[4], gu[4], e[4];
-    double piece[6][4];
   };
   Reference reference(const Box& b, int u) const {
     Reference r;
@@ -110,10 +108,8 @@ struct Model {
     if (u < 0) return r;
     const double m = 1e-3 * std::max(b.x2 - b.x1, b.y2 - b.y1) + tau;
     r.c[0] = {b.x1 - m, b.y1 - m}, r.c[1] = {b.x2 + m, b.y1 - m}, r.c[2] = {b.x2 + m, b.y2 + m}, r.c[3] = {b.x1 - m, b.y2 + m};
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < 4; ++k)
       r.fu[k] = f[u].at(r.c[k].x, r.c[k].y), r.gu[k] = g[u].at(r.c[k].x, r.c[k].y), r.e[k] = tol(r.c[k]);
-      for (int j = 0; j < f[u].n; ++j) r.piece[j][k] = f[u].piece[j].at(r.c[k].x, r.c[k].y);
-    }
     return r;
   }
   // Does u come before t at every point of the box and just beyond its sides, by the
@@ -132,25 +128,27 @@ struct Model {
   // test has passed (rarely, for a site that is not dominated).
   bool dominated(const Reference& r, int t) const {
     if (r.u < 0 || t == r.u) return false;
-    switch (against(f[t], r.c, 4, r.fu, r.e)) {
-      case Side::Above: return true;
-      case Side::Below: return against(g[t], r.c, 4, r.gu, r.e) == Side::Above && covers(f[t], r);
-      case Side::Neither: break;
-    }
-    return against(g[t], r.c, 4, r.gu, r.e) == Side::Above;
+    const Side side = against(f[t], r.c, 4, r.fu, r.e);
+    if (side == Side::Above) return true;
+    if (against(g[t], r.c, 4, r.gu, r.e) != Side::Above) return false;
+    return side == Side::Neither || covers(f[t], r);
   }
 
   // Is every piece of f_u under some piece of fn at every corner, within the allowance? Both
-  // are affine, so then on the whole grown box, and fn >= f_u - allowance there.
+  // are affine, so then on the whole grown box, and fn >= f_u - allowance there. Rare: the
+  // pieces' values are computed here, not with every box's reference.
   bool covers(const DistFn& fn, const Reference& r) const {
-    double at[6][4];
-    for (int i = 0; i < fn.n; ++i)
-      for (int k = 0; k < 4; ++k) at[i][k] = fn.piece[i].at(r.c[k].x, r.c[k].y);
-    for (int j = 0; j < f[r.u].n; ++j) {
+    const DistFn& fu = f[r.u];
+    double at[6][4], ref[6][4];
+    for (int k = 0; k < 4; ++k) {
+      for (int i = 0; i < fn.n; ++i) at[i][k] = fn.piece[i].at(r.c[k].x, r.c[k].y);
+      for (int j = 0; j < fu.n; ++j) ref[j][k] = fu.piece[j].at(r.c[k].x, r.c[k].y);
+    }
+    for (int j = 0; j < fu.n; ++j) {
       bool under = false;
       for (int i = 0; i < fn.n && !under; ++i) {
         under = true;
-        for (int k = 0; k < 4 && under; ++k) under = at[i][k] - r.piece[j][k] >= -r.e[k];
+        for (int k = 0; k < 4 && under; ++k) under = at[i][k] - ref[j][k] >= -r.e[k];
       }
       if (!under) return false;
     }

@@ -120,9 +120,9 @@ class Builder {
     }
     // Before the direct solve of an affine box: the sites of a group tied in L-inf over the
     // whole box are all contenders everywhere in it, and its solve costs the square of the
-    // group, where halves of half the sites cost half as much together (under a row of 25 boxes, with
-    // three far ones: 2,735 solves, a sixth of them of 25 to 44 sites, took twice as long as
-    // 5,092 smaller ones).
+    // group, where halves of half the sites cost half as much together (under a row of 25
+    // boxes, with three far ones: 2,735 solves, a sixth of them of 25 to 44 sites, took twice
+    // as long as 5,092 smaller ones).
     if (halve_across_ties(b, keep)) return;
     // Far from the sites whole groups tie in L-inf (a two-dimensional bisector region) and the
     // count never drops; there the functions are affine over the box, so a direct solve is cheap.
