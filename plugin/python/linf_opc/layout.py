@@ -28,20 +28,29 @@ def parse_layer(text):
         raise ValueError("layer must be given as L/D, e.g. 11/0, not %r" % (text,))
 
 
-# Up to this many shapes KLayout merges the layer before the core sees it: its merge is several
-# times faster than the core's (the SRAM's 113,019 shapes: about 0.1 s against 0.7 s), but
-# holds about twice the layer while it runs, so larger layers reach the core as drawn and the
-# core merges them in groups (it merges what it gets either way; the polygons are the same).
+# Up to this many shapes KLayout merges the layer before the core sees it, else the layer reaches
+# the core as drawn and the core merges it in groups (it merges what it gets either way; the
+# polygons are the same). KLayout merges in the layout's hierarchy (a DeepShapeStore): a cell
+# placed many times is merged once, and only what meets across cells is merged flat. On the
+# SRAM's 113,019 shapes that takes 0.13 s where the flat merge takes 0.69 s, the core's 0.7 s.
+# The merged layer is then made flat: the flat merge still holds about twice the layer while it
+# runs, hence the limit.
 MERGE_IN_KLAYOUT_MAX = 200000
 
 
 def region_of(cell, layer_index):
     """The layer's shapes in `cell` and below, flattened, with merged semantics (booleans and
     checks see overlaps and touches joined); merged by KLayout up to MERGE_IN_KLAYOUT_MAX
-    shapes, else as drawn."""
+    shapes, else as drawn. A flat region either way."""
     region = pya.Region(cell.begin_shapes_rec(layer_index))
     region.merged_semantics = True
-    return region.merged() if region.count() <= MERGE_IN_KLAYOUT_MAX else region
+    if region.count() > MERGE_IN_KLAYOUT_MAX:
+        return region
+    store = pya.DeepShapeStore()
+    merged = pya.Region()
+    merged.insert(pya.Region(cell.begin_shapes_rec(layer_index), store).merged())
+    merged.merged_semantics = True
+    return merged
 
 
 def _add(out, poly):
