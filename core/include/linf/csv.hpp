@@ -9,6 +9,7 @@
 #pragma once
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "linf/gauge.hpp"
 #include "linf/piece.hpp"
@@ -29,7 +30,8 @@ class PiecesCsv {
 
  private:
   std::FILE* f_ = nullptr;
-  std::string path_, line_;
+  std::string path_;
+  std::vector<std::string> text_;  // a batch's lines, formatted chunk by chunk
   double dbu_;
 };
 
