@@ -96,6 +96,42 @@ struct Model {
     return a < b;
   }
 
+  // The L1 tie-break between two sites with the same L-inf piece q on a cell, where both are
+  // points or axis-parallel edges (a Manhattan layer's every site): q's gradient is along one
+  // axis, and where q is such a site's L-inf distance, its L1 distance is q plus the distance
+  // along the other axis to the site's extent on that axis (a point, or an edge's span). So
+  // the tie-break is the 1-D one between the two extents, which do not overlap (sites do not
+  // cross): the site on the same side of the midpoint of the gap between them comes first,
+  // and on that line the rank decides, as where the extents are the same (a point and its
+  // edge seen beyond the edge's end: equal L1 distances). A half-plane, where the general
+  // rule splits the cell by every piece of both L1 functions: on the SRAM the cells' L-inf
+  // ties are 4.57 million pairs of such sites, 2.65 million of them an edge and its own end.
+  enum class Order { Unknown, HalfPlane, Equal };
+  // HalfPlane: h >= 0 where s comes first, h = 0 on the midpoint's line.
+  Order axis_order(int s, int t, const Affine& q, Affine& h) const {
+    if (!opt.axis_ties) return Order::Unknown;
+    int across;  // 0: x, 1: y
+    if (q.b == 0 && std::fabs(q.a) == 1) across = 1;
+    else if (q.a == 0 && std::fabs(q.b) == 1) across = 0;
+    else return Order::Unknown;
+    const Site& u = S[s];
+    const Site& v = S[t];
+    if ((u.a.x != u.b.x && u.a.y != u.b.y) || (v.a.x != v.b.x && v.a.y != v.b.y)) return Order::Unknown;
+    auto extent = [across](const Site& z, double& lo, double& hi) {
+      const double p = double(across ? z.a.y : z.a.x), r = double(across ? z.b.y : z.b.x);
+      lo = std::min(p, r), hi = std::max(p, r);
+    };
+    double ulo, uhi, vlo, vhi;
+    extent(u, ulo, uhi), extent(v, vlo, vhi);
+    if (ulo == vlo && uhi == vhi) return Order::Equal;
+    double m, sign;
+    if (uhi <= vlo) m = 0.5 * (uhi + vlo), sign = -1;  // s below t: s first where the coordinate < m
+    else if (vhi <= ulo) m = 0.5 * (vhi + ulo), sign = 1;
+    else return Order::Unknown;
+    h = across ? Affine{0, sign, -sign * m} : Affine{sign, 0, -sign * m};
+    return Order::HalfPlane;
+  }
+
   // The reference u's values at the corners of the grown box, computed once per box.
   struct Reference {
     int u = -1;

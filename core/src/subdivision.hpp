@@ -378,9 +378,10 @@ class Builder {
     stats.cells += cells.size();
 
     for (LocalCell& lc : cells) {
-      // Sites whose L-inf pieces coincide here need the L1 tie-break, hence affine L1 pieces.
-      // Pairs among the sites present here only: in a large solve most sites are absent from
-      // most cells.
+      // Sites whose L-inf pieces coincide here need the L1 tie-break, hence affine L1 pieces;
+      // not two points or axis-parallel edges, whose order is a half-plane or their rank
+      // (Model::axis_order). Pairs among the sites present here only: in a large solve most
+      // sites are absent from most cells.
       boost::container::small_vector<std::size_t, 16> present;
       for (std::size_t i = 0; i < k; ++i)
         if (lc.af[i] >= 0) present.push_back(i);
@@ -391,13 +392,17 @@ class Builder {
         const Affine& fi = f_[C[i]].piece[lc.af[i]];
         for (std::size_t y = x + 1; y < present.size(); ++y) {
           const std::size_t j = present[y];
-          if (detail::same_affine(fi, f_[C[j]].piece[lc.af[j]])) tied[i] = tied[j] = 1, any = true;
+          Affine h;
+          if (detail::same_affine(fi, f_[C[j]].piece[lc.af[j]]) &&
+              m_.axis_order(C[i], C[j], fi, h) == Model::Order::Unknown)
+            tied[i] = tied[j] = 1, any = true;
         }
       }
       if (!any) {
         regions(lc, C);
         continue;
       }
+      ++stats.tie_cells;
       std::vector<LocalCell> sub{lc};
       for (std::size_t i = 0; i < k; ++i)
         if (tied[i]) split_by(sub, C, i, true);
@@ -412,6 +417,11 @@ class Builder {
     const Affine& fi = f_[C[i]].piece[lc.af[i]];
     const Affine& fj = f_[C[j]].piece[lc.af[j]];
     if (!detail::same_affine(fi, fj)) { h = minus(fj, fi); return true; }
+    switch (m_.axis_order(C[i], C[j], fi, h)) {
+      case Model::Order::HalfPlane: return true;
+      case Model::Order::Equal: always = m_.rank_before(C[i], C[j]) ? 1 : 0; return false;
+      case Model::Order::Unknown: break;
+    }
     const Affine& gi = g_[C[i]].piece[lc.ag[i]];
     const Affine& gj = g_[C[j]].piece[lc.ag[j]];
     if (!detail::same_affine(gi, gj)) { h = minus(gj, gi); return true; }
@@ -605,6 +615,7 @@ void collect(const Model& m, const std::vector<Builder>& workers, BuildStats& st
     }
     st.boxes += w.stats.boxes, st.solves += w.stats.solves, st.solved_sites += w.stats.solved_sites;
     st.solved_pairs += w.stats.solved_pairs;
+    st.tie_cells += w.stats.tie_cells;
     st.cells += w.stats.cells;
   }
   st.raw_pieces += raw.size();

@@ -29,6 +29,8 @@ struct BuildOptions {
   int bent_sites = 6;         // at most this many are not affine over the box,
   int crowded_sites = 160;    // or at most this many when quartering would not thin them out
   int paired_sites = 16;      // in solves of at most this many sites, each is a dominance reference
+  bool axis_ties = true;      // the L1 tie-break of points and axis-parallel edges as a half-plane
+                              // (off: by their L1 pieces, as between any sites; the same pieces)
   double min_box = 1.0 / 64;  // never cut a box below this side (DBU)
   int threads = 0;            // workers; 0: one per hardware thread
   bool far_field_pass = true; // build beyond the sites' bounding box in a second pass with the
@@ -41,6 +43,7 @@ struct BuildOptions {
 struct BuildStats {
   std::size_t boxes = 0, solves = 0, solved_sites = 0, cells = 0, raw_pieces = 0;
   std::size_t solved_pairs = 0;  // the local solves' sizes squared, summed: their cost grows so
+  std::size_t tie_cells = 0;     // cells cut by L1 pieces for the tie-break
   std::size_t tiles = 0, tasks = 0, largest_tile_sites = 0;
 };
 
