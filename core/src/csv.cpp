@@ -4,6 +4,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -12,14 +13,37 @@
 
 namespace linf {
 
-namespace {
-// std::to_chars with a precision is specified as printf's "%.6f", hence the same text as
-// Python's "%.6f" % x, only several times faster.
-void append_fixed6(std::string& line, double x) {
-  char num[64];
+void append_fixed6(std::string& out, double x) {
+  // Most values need no general conversion: x * 10^6 rounded to an integer is x to six places
+  // unless the product lies within its rounding error of a half (then to_chars decides).
+  const double a = std::fabs(x), p = a * 1e6;
+  if (a < 1e9) {
+    const double whole = std::floor(p), frac = p - whole;  // both exact
+    if (std::fabs(frac - 0.5) > 4.5e-16 * p) {
+      std::uint64_t n = std::uint64_t(whole) + (frac > 0.5);
+      char buf[32];
+      char* const end = buf + sizeof buf;
+      char* s = end;
+      for (int i = 0; i < 6; ++i) *--s = char('0' + n % 10), n /= 10;
+      *--s = '.';
+      do *--s = char('0' + n % 10), n /= 10;
+      while (n);
+      if (std::signbit(x)) *--s = '-';
+      out.append(s, end);
+      return;
+    }
+  }
+  // std::to_chars with a precision is specified as printf's "%.6f"; the largest double has
+  // 309 digits before the point.
+  char num[400];
   const auto r = std::to_chars(num, num + sizeof num, x, std::chars_format::fixed, 6);
+  out.append(num, r.ptr);
+}
+
+namespace {
+void append_field(std::string& line, double x) {
   line.push_back(',');
-  line.append(num, r.ptr);
+  append_fixed6(line, x);
 }
 }  // namespace
 
@@ -35,9 +59,9 @@ void write_gauges_csv(const Sites& sites, const Gauges& gauges, double dbu, cons
     line.assign(id);
     line.push_back(',');
     line.append(gauge_type_name(g.type));
-    for (double v : {m.p.x, m.p.y, m.q.x, m.q.y, g.at.x, g.at.y, g.cd, g.score}) append_fixed6(line, v * dbu);
-    append_fixed6(line, gauges.norm_score(g));
-    append_fixed6(line, g.tiebreak * dbu);
+    for (double v : {m.p.x, m.p.y, m.q.x, m.q.y, g.at.x, g.at.y, g.cd, g.score}) append_field(line, v * dbu);
+    append_field(line, gauges.norm_score(g));
+    append_field(line, g.tiebreak * dbu);
     line.push_back(',');
     line.append(id);
     line.append("\r\n");
@@ -74,7 +98,7 @@ void PiecesCsv::add(const Sites& sites, const Piece* pieces, std::size_t n) {
                             double(a.a.x), double(a.a.y), double(a.b.x), double(a.b.y),
                             double(b.a.x), double(b.a.y), double(b.b.x), double(b.b.y)};
       out.append(kind_name(p.kind));
-      for (double x : v) append_fixed6(out, x * dbu_);
+      for (double x : v) append_field(out, x * dbu_);
       out.append("\r\n");
     }
   });

@@ -4,9 +4,13 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <string>
+#include <cstdio>
+#include <random>
 
 #include "linf/builder.hpp"
 #include "linf/classify.hpp"
+#include "linf/csv.hpp"
 #include "linf/diagram.hpp"
 #include "linf/distance.hpp"
 #include "linf/sites.hpp"
@@ -393,6 +397,33 @@ TEST(Builder, ManhattanTiesAreHalfPlanes) {
     }
     EXPECT_NO_THROW(voronoi_of_polygons(p, DiagramOptions{}));  // the checker passes
   }
+}
+
+// The CSV files' numbers are printf's "%.6f" (which the Python writer's bytes are compared
+// with in the KLayout tests); the writer's own conversion must give the same text for every
+// double, near-halves and signs included.
+TEST(Csv, FixedSixAsPrintf) {
+  std::mt19937_64 rng(11);
+  std::vector<double> xs{0.0, -0.0, 1e-7, -1e-7, 4e-7, 5e-7, 6e-7, -5e-7, 0.0000015, 0.0000025, 2.5e-7, 999999.9999995,
+                         1e9 - 0.0000005, 1e9, 1e12 + 0.5, -1e15, 1e300, INFINITY, -INFINITY, NAN};
+  std::uniform_int_distribution<std::int64_t> coord(-(std::int64_t(1) << 31), std::int64_t(1) << 31);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int i = 0; i < 300000; ++i) {
+    const std::int64_t k = coord(rng);
+    xs.push_back(double(k) * 0.0025);                      // a site coordinate in micrometres
+    xs.push_back(double(k) * 0.001 + unit(rng) * 1e-3);    // a piece's end
+    xs.push_back((double(k) + 0.5) / 1e6);                 // near a half in the sixth place
+    xs.push_back(std::ldexp(unit(rng) - 0.5, int(coord(rng) % 40)));
+  }
+  int differ = 0;
+  for (double x : xs) {
+    char want[512];
+    std::snprintf(want, sizeof want, "%.6f", x);
+    std::string got;
+    linf::append_fixed6(got, x);
+    if (got != want && ++differ <= 5) ADD_FAILURE() << x << ": " << got << " instead of " << want;
+  }
+  EXPECT_EQ(differ, 0);
 }
 
 // Plain input is held to the layout's range as polygons are (the checker indexes the sites'

@@ -16,6 +16,9 @@
 
 namespace linf {
 
+// x as printf's "%.6f" (and Python's) writes it, appended to `out`: the CSV files' numbers.
+void append_fixed6(std::string& out, double x);
+
 // Writes the file and its time into d.seconds_csv; throws std::runtime_error if it cannot.
 void write_pieces_csv(Diagram& d, double dbu, const std::string& path);
 
