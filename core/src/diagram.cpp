@@ -57,7 +57,7 @@ Box clip_box(const Sites& s) {
 
 Result voronoi_of_polygons(const FlatPolygons& polygons, const DiagramOptions& opt) {
   auto t0 = std::chrono::steady_clock::now();
-  Sites s = sites_of_polygons(merge_polygons(polygons).view());
+  Sites s = sites_of_polygons(merge_polygons(polygons, std::size_t(1) << 16, opt.build.threads).view());
   return finish(std::move(s), opt, since(t0));
 }
 

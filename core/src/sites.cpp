@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "linf/box_tree.hpp"
+#include "parallel.hpp"
 
 namespace linf {
 namespace bp = boost::polygon;
@@ -150,39 +151,65 @@ std::vector<std::size_t> merge_groups(const PolygonIndex& ix, std::size_t size, 
 
 }  // namespace
 
-PolygonArrays merge_polygons(const FlatPolygons& in, std::size_t group) {
+PolygonArrays merge_polygons(const FlatPolygons& in, std::size_t group, int threads) {
   const PolygonIndex ix(in);
-  PolygonArrays merged;
-  Paged<Point> keys;
-  {
-    Paged<std::int32_t> ids;
-    std::size_t from = 0;
-    for (const std::size_t to : merge_groups(ix, group, ids)) {
-      merge_group(ix, ids.data() + from, to - from, merged, keys);
-      from = to;
-    }
+  // A layer of one group is cut into a group per worker, merged side by side; a larger one
+  // group by group, each scan holding its group's memory alone.
+  const unsigned workers = detail::worker_count(ix.size(), threads);
+  const bool side_by_side = workers > 1 && ix.size() <= group;
+  if (side_by_side) group = (ix.size() + workers - 1) / workers;
+  Paged<std::int32_t> ids;
+  const std::vector<std::size_t> ends = merge_groups(ix, group, ids);
+  std::vector<PolygonArrays> merged(side_by_side ? ends.size() : 1);
+  std::vector<Paged<Point>> keys(merged.size());
+  auto run = [&](std::size_t g, PolygonArrays& out, Paged<Point>& k) {
+    const std::size_t from = g ? ends[g - 1] : 0;
+    merge_group(ix, ids.data() + from, ends[g] - from, out, k);
+  };
+  if (side_by_side)
+    detail::parallel_for(ends.size(), threads, [&](unsigned, std::size_t g) { run(g, merged[g], keys[g]); });
+  else
+    for (std::size_t g = 0; g < ends.size(); ++g) run(g, merged[0], keys[0]);
+  // Boost's output order depends on its scanline and on the groups; sorted by least vertex,
+  // then by the whole outer ring (two polygons may share their least vertex, touching there),
+  // for site numbering independent of both.
+  std::vector<PolygonIndex> mx;
+  struct Ref {
+    std::uint32_t first;   // part
+    std::int32_t second;   // polygon in it
+  };
+  Paged<Ref> order;
+  for (std::size_t g = 0; g < merged.size(); ++g) {
+    mx.emplace_back(merged[g].view());
+    for (std::size_t i = 0; i < merged[g].count; ++i) order.push_back({std::uint32_t(g), std::int32_t(i)});
   }
-  // Boost's output order depends on its scanline; sorted by least vertex for reproducible site
-  // numbering (an order of ids sorted as the polygons themselves were: the same order).
-  Paged<std::int32_t> order;
-  order.resize(merged.count);
-  for (std::size_t i = 0; i < merged.count; ++i) order[i] = std::int32_t(i);
-  std::sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) { return keys[std::size_t(a)] < keys[std::size_t(b)]; });
-  const PolygonIndex mx(merged.view());
+  auto outer = [&](const Ref& o) {
+    std::pair<const std::int64_t*, std::size_t> r{nullptr, 0};
+    mx[o.first].rings(std::size_t(o.second), [&](const std::int64_t* xy, std::size_t n, bool is_outer) {
+      if (is_outer) r = {xy, n};
+    });
+    return r;
+  };
+  std::sort(order.begin(), order.end(), [&](const Ref& a, const Ref& b) {
+    const Point ka = keys[a.first][std::size_t(a.second)], kb = keys[b.first][std::size_t(b.second)];
+    if (ka != kb) return ka < kb;
+    const auto ra = outer(a), rb = outer(b);
+    return std::lexicographical_compare(ra.first, ra.first + 2 * ra.second, rb.first, rb.first + 2 * rb.second);
+  });
   PolygonArrays out;
-  for (const std::int32_t i : order) {
-    mx.rings(std::size_t(i), [&](const std::int64_t* xy, std::size_t n, bool outer) {
+  for (const auto& o : order) {
+    mx[o.first].rings(std::size_t(o.second), [&](const std::int64_t* xy, std::size_t n, bool is_outer) {
       for (std::size_t j = 0; j < 2 * n; ++j) out.points.push_back(xy[j]);
-      out.rings.push_back(outer ? std::int64_t(n) : -std::int64_t(n));
+      out.rings.push_back(is_outer ? std::int64_t(n) : -std::int64_t(n));
     });
     ++out.count;
   }
   return out;
 }
 
-std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in, std::size_t group) {
+std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in, std::size_t group, int threads) {
   const PolygonArrays flat = flat_of(in);
-  return polygons_of(merge_polygons(flat.view(), group).view());
+  return polygons_of(merge_polygons(flat.view(), group, threads).view());
 }
 
 Sites sites_of_polygons(const FlatPolygons& merged) {

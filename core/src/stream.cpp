@@ -128,7 +128,7 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
   StreamResult r;
   Diagram& d = r.diagram;
   auto t0 = std::chrono::steady_clock::now();
-  d.sites = sites_of_polygons(merge_polygons(polygons).view());
+  d.sites = sites_of_polygons(merge_polygons(polygons, std::size_t(1) << 16, opt.build.threads).view());
   d.seconds_merge = since(t0);
   d.clip = clip_box(d.sites);
   d.attempts = 1;

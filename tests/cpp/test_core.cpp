@@ -50,10 +50,12 @@ TEST(Merge, GroupsGiveTheSameAsOneScan) {
   in.push_back(box(30400, 400, 30600, 600));
   in.push_back({{{40000, 0}, {41000, 0}, {40500, 700}}, {}});  // slanted edges crossing a box
   in.push_back(box(40400, 300, 40600, 900));
-  const auto whole = merge_polygons(in, in.size());
+  const auto whole = merge_polygons(in, in.size(), 1);
   ASSERT_LT(whole.size(), in.size());  // some merged
-  for (std::size_t group : {std::size_t(1), std::size_t(7), std::size_t(500)}) {
-    const auto parts = merge_polygons(in, group);
+  // Groups of 1, 7 and 500 polygons one after the other; one group merged in 2 and 3 parts side by side.
+  for (auto [group, threads] : {std::pair{std::size_t(1), 1}, {std::size_t(7), 1}, {std::size_t(500), 2},
+                                {in.size(), 2}, {in.size(), 3}}) {
+    const auto parts = merge_polygons(in, group, threads);
     ASSERT_EQ(parts.size(), whole.size()) << group;
     for (std::size_t i = 0; i < whole.size(); ++i) {
       ASSERT_EQ(parts[i].outer, whole[i].outer) << group << " polygon " << i;
