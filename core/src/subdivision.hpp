@@ -48,14 +48,14 @@ class Builder {
   std::vector<int> candidates(const Box& b, const std::vector<int>& cand) const {
     std::vector<double> upper(cand.size());
     double U = INFINITY;
-    for (std::size_t i = 0; i < cand.size(); ++i) U = std::min(U, upper[i] = max_over(f_[cand[i]], b));
+    for (std::size_t i = 0; i < cand.size(); ++i) U = std::min(U, upper[i] = max_over(f_[cand[i]], S_[cand[i]], b, false));
     // The reference for the dominance test: least upper bound, then least in L1 among those.
     // (Within U + tau, as the tiles' halos: a tile picks the same reference as the whole layer.)
     int best = -1;
     double Ug = INFINITY;
     for (std::size_t i = 0; i < cand.size(); ++i) {
       if (upper[i] > U + tau_) continue;
-      const double m = max_over(g_[cand[i]], b);
+      const double m = max_over(g_[cand[i]], S_[cand[i]], b, true);
       if (m < Ug) Ug = m, best = cand[i];
     }
     std::vector<int> keep;
@@ -250,7 +250,7 @@ class Builder {
       double U = INFINITY;
       int best = -1;
       for (std::size_t i = g0; i < g1; ++i) {
-        const double m = max_over(g_[flat[i].t], b);
+        const double m = max_over(g_[flat[i].t], S_[flat[i].t], b, true);
         if (m < U) U = m, best = flat[i].t;
       }
       // Members with identical L1 pieces are all kept: they may part just outside the box,
