@@ -7,6 +7,8 @@
 #include <cmath>
 #include <vector>
 
+#include <boost/container/small_vector.hpp>
+
 #include "affine.hpp"
 #include "bounds.hpp"
 #include "cell.hpp"
@@ -130,6 +132,63 @@ struct Model {
     else return Order::Unknown;
     h = across ? Affine{0, sign, -sign * m} : Affine{sign, 0, -sign * m};
     return Order::HalfPlane;
+  }
+
+  // The L1 tie-break along an edge p -> q of a region, between the sites g[0, n) that tie
+  // there in L-inf with the same least slope across it (Builder::emit; fp, fq and tp, tq: the
+  // tied value and its allowance at the edge's ends), where all are points or axis-parallel
+  // edges and one L-inf piece, the same for all, is each one's distance along the whole edge
+  // and just beyond it. Then, as in axis_order, each one's L1 distance along the edge is that
+  // piece plus the distance across to its extent, so the owner beyond can change only where
+  // the edge crosses an extent's end or the midpoint of the gap between neighbouring extents:
+  // those parameters in (0, 1) go to `cuts`, where the general rule walks the lower envelope
+  // of the sites' L1 profiles. False, and `cuts` untouched, where this does not apply.
+  template <class Cuts>
+  bool axis_cuts(const int* g, std::size_t n, const Vec2& p, const Vec2& q, const Vec2& m, const Vec2& un,
+                 double fp, double fq, double tp, double tq, Cuts& cuts) const {
+    if (!opt.axis_ties) return false;
+    struct Extent { double lo, hi; };
+    boost::container::small_vector<Extent, 8> ext;
+    const Affine* shared = nullptr;
+    int across = 0;  // 0: x, 1: y
+    const double tm = tol(m);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Site& z = S[g[i]];
+      if (z.a.x != z.b.x && z.a.y != z.b.y) return false;
+      // The piece beyond m: the steepest across among those at f's value there, as slope().
+      const DistFn& fn = f[g[i]];
+      const double v = fn.at(m.x, m.y);
+      int best = -1;
+      double steepest = -INFINITY;
+      for (int k = 0; k < fn.n; ++k) {
+        const Affine& pc = fn.piece[k];
+        if (pc.at(m.x, m.y) < v - tm) continue;
+        const double d = pc.a * un.x + pc.b * un.y;
+        if (d > steepest) steepest = d, best = k;
+      }
+      const Affine& pc = fn.piece[best];
+      if (std::fabs(pc.at(p.x, p.y) - fp) > tp || std::fabs(pc.at(q.x, q.y) - fq) > tq) return false;
+      if (!shared) shared = &pc, across = pc.b == 0 ? 1 : 0;
+      else if (!same_affine(*shared, pc)) return false;
+      const double u = double(across ? z.a.y : z.a.x), w = double(across ? z.b.y : z.b.x);
+      ext.push_back({std::min(u, w), std::max(u, w)});
+    }
+    std::sort(ext.begin(), ext.end(), [](const Extent& x, const Extent& y) { return x.lo < y.lo || (x.lo == y.lo && x.hi < y.hi); });
+    for (std::size_t i = 1; i < ext.size(); ++i)
+      if (!(ext[i].lo == ext[i - 1].lo && ext[i].hi == ext[i - 1].hi) && ext[i].lo < ext[i - 1].hi) return false;
+    const double bp = across ? p.y : p.x, bq = across ? q.y : q.x;
+    if (bp == bq) return true;  // the edge runs along the gradient: the distances across are constant
+    auto add = [&](double at) {
+      const double s = (at - bp) / (bq - bp);
+      if (s > 1e-12 && s < 1 - 1e-12) cuts.push_back(s);
+    };
+    for (std::size_t i = 0; i < ext.size(); ++i) {
+      if (i > 0 && ext[i].lo == ext[i - 1].lo && ext[i].hi == ext[i - 1].hi) continue;
+      add(ext[i].lo);
+      if (ext[i].hi != ext[i].lo) add(ext[i].hi);
+      if (i > 0) add(0.5 * (ext[i - 1].hi + ext[i].lo));
+    }
+    return true;
   }
 
   // The reference u's values at the corners of the grown box, computed once per box.

@@ -540,10 +540,15 @@ class Builder {
       for (std::size_t i = 0; i < tied.size(); ++i) least += sl[i] <= smin + 1e-12;
       boost::container::small_vector<double, 16> cuts{0.0, 1.0};
       if (least > 1) {  // with one site alone at the least slope there is no L1 envelope to walk
-        boost::container::small_vector<Profile, 4> g;
+        boost::container::small_vector<int, 8> G;
         for (std::size_t i = 0; i < tied.size(); ++i)
-          if (sl[i] <= smin + 1e-12) g.push_back(profile(g_[tied[i]], p, q));
-        envelope_cuts(g, cuts);
+          if (sl[i] <= smin + 1e-12) G.push_back(tied[i]);
+        if (!m_.axis_cuts(G.data(), G.size(), p, q, m, un, vp[tk], vq[tk], tl[e], tl[e2], cuts)) {
+          ++stats.envelopes;
+          boost::container::small_vector<Profile, 4> g;
+          for (int s : G) g.push_back(profile(g_[s], p, q));
+          envelope_cuts(g, cuts);
+        }
       }
       std::sort(cuts.begin(), cuts.end());
       // Neighbouring parts with the same owner beyond go out as one piece.
@@ -615,7 +620,7 @@ void collect(const Model& m, const std::vector<Builder>& workers, BuildStats& st
     }
     st.boxes += w.stats.boxes, st.solves += w.stats.solves, st.solved_sites += w.stats.solved_sites;
     st.solved_pairs += w.stats.solved_pairs;
-    st.tie_cells += w.stats.tie_cells;
+    st.tie_cells += w.stats.tie_cells, st.envelopes += w.stats.envelopes;
     st.cells += w.stats.cells;
   }
   st.raw_pieces += raw.size();

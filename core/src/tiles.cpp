@@ -262,7 +262,7 @@ void build_tiled(const SiteList& sites, const Box& root, const BuildOptions& opt
     throw;
   }
   st.boxes += ended.boxes, st.solves += ended.solves, st.solved_sites += ended.solved_sites;
-  st.solved_pairs += ended.solved_pairs, st.tie_cells += ended.tie_cells;
+  st.solved_pairs += ended.solved_pairs, st.tie_cells += ended.tie_cells, st.envelopes += ended.envelopes;
   st.cells += ended.cells, st.raw_pieces += ended.raw_pieces;
 }
 

@@ -369,10 +369,12 @@ TEST(Builder, EveryCandidateIsAReferenceInSmallBoxes) {
 
 // Where points and axis-parallel edges tie in L-inf, the L1 tie-break between two of them is
 // the 1-D one between their extents across the shared piece's gradient: a half-plane at the
-// midpoint of the gap, or the rank (Model::axis_order). Without it those cells were cut by
-// every L1 piece of the tied sites. The same pieces either way; on a block of 36 random
-// Manhattan fields no cell is cut for the tie-break any more (17,155 were); on a block with
-// 45-degree shapes 11,910 (24,250), those where a slanted edge ties. And the checker passes.
+// midpoint of the gap, or the rank (Model::axis_order); along a region's edge, the owner
+// beyond changes only at the extents' ends and the gaps' midpoints (Model::axis_cuts).
+// Without them those cells were cut by every L1 piece of the tied sites, and the edges' L1
+// profiles walked. The same pieces either way; on a block of 36 random Manhattan fields no
+// cell is cut and no envelope walked for the tie-break any more; on a block with 45-degree
+// shapes only where a slanted edge ties. And the checker passes.
 TEST(Builder, ManhattanTiesAreHalfPlanes) {
   using linf::testing::Style;
   for (const Style style : {Style::Rectilinear, Style::Octilinear}) {
@@ -389,9 +391,17 @@ TEST(Builder, ManhattanTiesAreHalfPlanes) {
     const auto a = lengths(general, st_general), b = lengths(BuildOptions{}, st_axis);
     RecordProperty(style == Style::Rectilinear ? "tie_cells_general" : "tie_cells_general_45", int(st_general.tie_cells));
     RecordProperty(style == Style::Rectilinear ? "tie_cells" : "tie_cells_45", int(st_axis.tie_cells));
+    RecordProperty(style == Style::Rectilinear ? "envelopes_general" : "envelopes_general_45", int(st_general.envelopes));
+    RecordProperty(style == Style::Rectilinear ? "envelopes" : "envelopes_45", int(st_axis.envelopes));
     EXPECT_GT(st_general.tie_cells, 0u);
-    if (style == Style::Rectilinear) EXPECT_EQ(st_axis.tie_cells, 0u);
-    else EXPECT_LT(st_axis.tie_cells, st_general.tie_cells);
+    EXPECT_GT(st_general.envelopes, 0u);
+    if (style == Style::Rectilinear) {
+      EXPECT_EQ(st_axis.tie_cells, 0u);
+      EXPECT_EQ(st_axis.envelopes, 0u);
+    } else {
+      EXPECT_LT(st_axis.tie_cells, st_general.tie_cells);
+      EXPECT_LT(st_axis.envelopes, st_general.envelopes);
+    }
     ASSERT_EQ(a.size(), b.size());
     for (auto ia = a.begin(), ib = b.begin(); ia != a.end(); ++ia, ++ib) {
       ASSERT_EQ(ia->first, ib->first);

@@ -44,6 +44,7 @@ struct BuildStats {
   std::size_t boxes = 0, solves = 0, solved_sites = 0, cells = 0, raw_pieces = 0;
   std::size_t solved_pairs = 0;  // the local solves' sizes squared, summed: their cost grows so
   std::size_t tie_cells = 0;     // cells cut by L1 pieces for the tie-break
+  std::size_t envelopes = 0;     // region edges along which the L1 profiles' envelope was walked
   std::size_t tiles = 0, tasks = 0, largest_tile_sites = 0;
 };
 
