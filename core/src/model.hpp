@@ -139,10 +139,11 @@ struct Model {
   // tied value and its allowance at the edge's ends), where all are points or axis-parallel
   // edges and one L-inf piece, the same for all, is each one's distance along the whole edge
   // and just beyond it. Then, as in axis_order, each one's L1 distance along the edge is that
-  // piece plus the distance across to its extent, so the owner beyond can change only where
-  // the edge crosses an extent's end or the midpoint of the gap between neighbouring extents:
-  // those parameters in (0, 1) go to `cuts`, where the general rule walks the lower envelope
-  // of the sites' L1 profiles. False, and `cuts` untouched, where this does not apply.
+  // piece plus the distance across to its extent, and the nearest extent is the owner beyond
+  // (equal extents: the rank). So it changes only where the edge crosses the midpoint of the
+  // gap between neighbouring extents: those parameters in (0, 1) go to `cuts`, where the
+  // general rule walks the lower envelope of the sites' L1 profiles and cuts at every
+  // breakpoint of them. False, and `cuts` untouched, where this does not apply.
   template <class Cuts>
   bool axis_cuts(const int* g, std::size_t n, const Vec2& p, const Vec2& q, const Vec2& m, const Vec2& un,
                  double fp, double fq, double tp, double tq, Cuts& cuts) const {
@@ -182,12 +183,8 @@ struct Model {
       const double s = (at - bp) / (bq - bp);
       if (s > 1e-12 && s < 1 - 1e-12) cuts.push_back(s);
     };
-    for (std::size_t i = 0; i < ext.size(); ++i) {
-      if (i > 0 && ext[i].lo == ext[i - 1].lo && ext[i].hi == ext[i - 1].hi) continue;
-      add(ext[i].lo);
-      if (ext[i].hi != ext[i].lo) add(ext[i].hi);
-      if (i > 0) add(0.5 * (ext[i - 1].hi + ext[i].lo));
-    }
+    for (std::size_t i = 1; i < ext.size(); ++i)
+      if (!(ext[i].lo == ext[i - 1].lo && ext[i].hi == ext[i - 1].hi)) add(0.5 * (ext[i - 1].hi + ext[i].lo));
     return true;
   }
 
