@@ -19,15 +19,22 @@ double max_over(const DistFn& f, const Box& b) {
   return std::max({f.at(b.x1, b.y1), f.at(b.x2, b.y1), f.at(b.x2, b.y2), f.at(b.x1, b.y2)});
 }
 
-// The same for site s's own function fn (L-inf, or L1 if l1), from the box's far sides where s
-// is a point or an axis-parallel edge (a box itself; the candidates' bound, for every site of
-// every box): the value fn's pieces give at the corners, exactly so (the coordinates are
-// integers and their halves).
-double max_over(const DistFn& fn, const Site& s, const Box& b, bool l1) {
-  if (s.a.x != s.b.x && s.a.y != s.b.y) return max_over(fn, b);
+// A point or an axis-parallel edge is a box itself: its distances are the box-to-box ones.
+bool rectilinear(const Site& s) { return s.a.x == s.b.x || s.a.y == s.b.y; }
+
+// The largest L-inf (or L1) distance over box b of a rectilinear site, from the box's far
+// sides: the value its distance function's pieces give at b's corners, exactly so (the
+// coordinates are integers and their halves), without evaluating them.
+double far_side(const Site& s, const Box& b, bool l1) {
   const double gx = std::max(b.x2 - double(std::max(s.a.x, s.b.x)), double(std::min(s.a.x, s.b.x)) - b.x1);
   const double gy = std::max(b.y2 - double(std::max(s.a.y, s.b.y)), double(std::min(s.a.y, s.b.y)) - b.y1);
   return l1 ? std::max(gx, 0.0) + std::max(gy, 0.0) : std::max(gx, gy);
+}
+
+// max_over of site s's own function fn (L-inf, or L1 if l1): the candidates' bound, for every
+// site of every box.
+double max_over(const DistFn& fn, const Site& s, const Box& b, bool l1) {
+  return rectilinear(s) ? far_side(s, b, l1) : max_over(fn, b);
 }
 
 // The four quarters of a box, the subdivision step.

@@ -118,7 +118,7 @@ struct Model {
     else return Order::Unknown;
     const Site& u = S[s];
     const Site& v = S[t];
-    if ((u.a.x != u.b.x && u.a.y != u.b.y) || (v.a.x != v.b.x && v.a.y != v.b.y)) return Order::Unknown;
+    if (!rectilinear(u) || !rectilinear(v)) return Order::Unknown;
     auto extent = [across](const Site& z, double& lo, double& hi) {
       const double p = double(across ? z.a.y : z.a.x), r = double(across ? z.b.y : z.b.x);
       lo = std::min(p, r), hi = std::max(p, r);
@@ -155,7 +155,7 @@ struct Model {
     const double tm = tol(m);
     for (std::size_t i = 0; i < n; ++i) {
       const Site& z = S[g[i]];
-      if (z.a.x != z.b.x && z.a.y != z.b.y) return false;
+      if (!rectilinear(z)) return false;
       // The piece beyond m: the steepest across among those at f's value there, as slope().
       const DistFn& fn = f[g[i]];
       const double v = fn.at(m.x, m.y);

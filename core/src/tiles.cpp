@@ -119,7 +119,10 @@ void gather(const SiteGrid& grid, const SiteList& sites, const Box& b, const Box
       continue;
     }
     double U = INFINITY;
-    for (int t : out) U = std::min(U, max_over(make_distfn(sites[t], Norm::Linf), b));
+    for (int t : out) {
+      const Site& s = sites[t];
+      U = std::min(U, rectilinear(s) ? far_side(s, b, false) : max_over(make_distfn(s, Norm::Linf), b));
+    }
     if (U + tau <= r) return;
     r = U + tau;
   }
