@@ -339,6 +339,22 @@ TEST(Builder, LongLayerGetsSquareBoxes) {
   EXPECT_LT(n, 300000u);
 }
 
+// Two builds of the same sites give the same pieces: per owner pair, the same total length.
+namespace {
+std::map<std::pair<int, int>, double> pair_lengths(const Sites& s, const BuildOptions& opt, BuildStats& st) {
+  std::map<std::pair<int, int>, double> by_pair;
+  for (const Piece& q : build_pieces(s, clip_box(s), opt, &st)) by_pair[{q.a, q.b}] += std::hypot(q.q.x - q.p.x, q.q.y - q.p.y);
+  return by_pair;
+}
+void expect_same_lengths(const std::map<std::pair<int, int>, double>& a, const std::map<std::pair<int, int>, double>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (auto ia = a.begin(), ib = b.begin(); ia != a.end(); ++ia, ++ib) {
+    ASSERT_EQ(ia->first, ib->first);
+    EXPECT_NEAR(ia->second, ib->second, 1e-6 * (1 + ia->second));
+  }
+}
+}  // namespace
+
 // Half the sites of the SRAM's local solves owned nothing in them: a far line end behind a
 // near one, a corner behind an edge, each beaten by some other candidate that the one
 // reference of the box is not. In local solves of at most BuildOptions::paired_sites sites
@@ -347,30 +363,21 @@ TEST(Builder, LongLayerGetsSquareBoxes) {
 TEST(Builder, EveryCandidateIsAReferenceInSmallBoxes) {
   const std::vector<Polygon> p = cut_block(40, 3000, Coord(1) << 30);
   Sites s = sites_of_polygons(merge_polygons(p));
-  auto lengths = [&](const BuildOptions& opt, BuildStats& st) {
-    std::map<std::pair<int, int>, double> by_pair;
-    for (const Piece& q : build_pieces(s, clip_box(s), opt, &st)) by_pair[{q.a, q.b}] += std::hypot(q.q.x - q.p.x, q.q.y - q.p.y);
-    return by_pair;
-  };
   BuildOptions one;
   one.paired_sites = 0;
   BuildStats st_one, st_all;
-  const auto a = lengths(one, st_one), b = lengths(BuildOptions{}, st_all);
+  const auto a = pair_lengths(s, one, st_one), b = pair_lengths(s, BuildOptions{}, st_all);
   RecordProperty("solved_sites_one_reference", int(st_one.solved_sites));
   RecordProperty("solved_sites", int(st_all.solved_sites));
   EXPECT_LT(double(st_all.solved_sites), 0.8 * double(st_one.solved_sites));
-  ASSERT_EQ(a.size(), b.size());
-  for (auto ia = a.begin(), ib = b.begin(); ia != a.end(); ++ia, ++ib) {
-    ASSERT_EQ(ia->first, ib->first);
-    EXPECT_NEAR(ia->second, ib->second, 1e-6 * (1 + ia->second));
-  }
+  expect_same_lengths(a, b);
   EXPECT_NO_THROW(voronoi_of_polygons(p, DiagramOptions{}));  // the checker passes
 }
 
 // Where points and axis-parallel edges tie in L-inf, the L1 tie-break between two of them is
 // the 1-D one between their extents across the shared piece's gradient: a half-plane at the
 // midpoint of the gap, or the rank (Model::axis_order); along a region's edge, the owner
-// beyond changes only at the extents' ends and the gaps' midpoints (Model::axis_cuts).
+// beyond changes only at the gaps' midpoints (Model::axis_cuts).
 // Without them those cells were cut by every L1 piece of the tied sites, and the edges' L1
 // profiles walked. The same pieces either way; on a block of 36 random Manhattan fields no
 // cell is cut and no envelope walked for the tie-break any more; on a block with 45-degree
@@ -380,15 +387,10 @@ TEST(Builder, ManhattanTiesAreHalfPlanes) {
   for (const Style style : {Style::Rectilinear, Style::Octilinear}) {
     const std::vector<Polygon> p = linf::testing::block(7, style, 6, 6);
     Sites s = sites_of_polygons(merge_polygons(p));
-    auto lengths = [&](const BuildOptions& opt, BuildStats& st) {
-      std::map<std::pair<int, int>, double> by_pair;
-      for (const Piece& q : build_pieces(s, clip_box(s), opt, &st)) by_pair[{q.a, q.b}] += std::hypot(q.q.x - q.p.x, q.q.y - q.p.y);
-      return by_pair;
-    };
     BuildOptions general;
     general.axis_ties = false;
     BuildStats st_general, st_axis;
-    const auto a = lengths(general, st_general), b = lengths(BuildOptions{}, st_axis);
+    const auto a = pair_lengths(s, general, st_general), b = pair_lengths(s, BuildOptions{}, st_axis);
     RecordProperty(style == Style::Rectilinear ? "tie_cells_general" : "tie_cells_general_45", int(st_general.tie_cells));
     RecordProperty(style == Style::Rectilinear ? "tie_cells" : "tie_cells_45", int(st_axis.tie_cells));
     RecordProperty(style == Style::Rectilinear ? "envelopes_general" : "envelopes_general_45", int(st_general.envelopes));
@@ -402,11 +404,7 @@ TEST(Builder, ManhattanTiesAreHalfPlanes) {
       EXPECT_LT(st_axis.tie_cells, st_general.tie_cells);
       EXPECT_LT(st_axis.envelopes, st_general.envelopes);
     }
-    ASSERT_EQ(a.size(), b.size());
-    for (auto ia = a.begin(), ib = b.begin(); ia != a.end(); ++ia, ++ib) {
-      ASSERT_EQ(ia->first, ib->first);
-      EXPECT_NEAR(ia->second, ib->second, 1e-6 * (1 + ia->second));
-    }
+    expect_same_lengths(a, b);
     EXPECT_NO_THROW(voronoi_of_polygons(p, DiagramOptions{}));  // the checker passes
   }
 }
