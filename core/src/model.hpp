@@ -43,12 +43,22 @@ struct Model {
   // The allowance of a decision at p: tau, the same in every tile, and rounding at p's scale.
   double tol(const Vec2& p) const { return tau + 1e-13 * (std::fabs(p.x) + std::fabs(p.y)); }
 
-  // The derivative of f at m along d: the steepest of the pieces within `tol` of f's value.
-  static double slope(const DistFn& f, const Vec2& m, const Vec2& d, double value, double tol) {
+  // The piece of f beyond m in direction d: the steepest along d of the pieces within `tol`
+  // of f's value there (at least the one attaining it).
+  static const Affine& steepest(const DistFn& f, const Vec2& m, const Vec2& d, double value, double tol) {
+    int best = 0;
     double s = -INFINITY;
-    for (int i = 0; i < f.n; ++i)
-      if (f.piece[i].at(m.x, m.y) >= value - tol) s = std::max(s, f.piece[i].a * d.x + f.piece[i].b * d.y);
-    return s;
+    for (int i = 0; i < f.n; ++i) {
+      if (f.piece[i].at(m.x, m.y) < value - tol) continue;
+      const double di = f.piece[i].a * d.x + f.piece[i].b * d.y;
+      if (di > s) s = di, best = i;
+    }
+    return f.piece[best];
+  }
+  // The derivative of f at m along d.
+  static double slope(const DistFn& f, const Vec2& m, const Vec2& d, double value, double tol) {
+    const Affine& p = steepest(f, m, d, value, tol);
+    return p.a * d.x + p.b * d.y;
   }
 
   // The owner just beyond m in direction d: compare distance, its slope along d, then the
@@ -111,27 +121,31 @@ struct Model {
   enum class Order { Unknown, HalfPlane, Equal };
   // HalfPlane: h >= 0 where s comes first, h = 0 on the midpoint's line.
   Order axis_order(int s, int t, const Affine& q, Affine& h) const {
-    if (!opt.axis_ties) return Order::Unknown;
-    int across;  // 0: x, 1: y
-    if (q.b == 0 && std::fabs(q.a) == 1) across = 1;
-    else if (q.a == 0 && std::fabs(q.b) == 1) across = 0;
-    else return Order::Unknown;
-    const Site& u = S[s];
-    const Site& v = S[t];
-    if (!rectilinear(u) || !rectilinear(v)) return Order::Unknown;
-    auto extent = [across](const Site& z, double& lo, double& hi) {
-      const double p = double(across ? z.a.y : z.a.x), r = double(across ? z.b.y : z.b.x);
-      lo = std::min(p, r), hi = std::max(p, r);
-    };
-    double ulo, uhi, vlo, vhi;
-    extent(u, ulo, uhi), extent(v, vlo, vhi);
-    if (ulo == vlo && uhi == vhi) return Order::Equal;
+    const int across = opt.axis_ties ? across_of(q) : -1;
+    if (across < 0 || !rectilinear(S[s]) || !rectilinear(S[t])) return Order::Unknown;
+    const Extent u = extent(S[s], across), v = extent(S[t], across);
+    if (u == v) return Order::Equal;
     double m, sign;
-    if (uhi <= vlo) m = 0.5 * (uhi + vlo), sign = -1;  // s below t: s first where the coordinate < m
-    else if (vhi <= ulo) m = 0.5 * (vhi + ulo), sign = 1;
+    if (u.hi <= v.lo) m = 0.5 * (u.hi + v.lo), sign = -1;  // s below t: s first where the coordinate < m
+    else if (v.hi <= u.lo) m = 0.5 * (v.hi + u.lo), sign = 1;
     else return Order::Unknown;
     h = across ? Affine{0, sign, -sign * m} : Affine{sign, 0, -sign * m};
     return Order::HalfPlane;
+  }
+  // The axis across an L-inf piece's gradient (0: x, 1: y), or -1 for a slanted edge's piece.
+  static int across_of(const Affine& q) {
+    if (q.b == 0 && std::fabs(q.a) == 1) return 1;
+    if (q.a == 0 && std::fabs(q.b) == 1) return 0;
+    return -1;
+  }
+  // A rectilinear site's extent on an axis: a point, or an edge's span.
+  struct Extent {
+    double lo, hi;
+    bool operator==(const Extent& o) const { return lo == o.lo && hi == o.hi; }
+  };
+  static Extent extent(const Site& z, int across) {
+    const double p = double(across ? z.a.y : z.a.x), r = double(across ? z.b.y : z.b.x);
+    return {std::min(p, r), std::max(p, r)};
   }
 
   // The L1 tie-break along an edge p -> q of a region, between the sites g[0, n) that tie
@@ -148,43 +162,31 @@ struct Model {
   bool axis_cuts(const int* g, std::size_t n, const Vec2& p, const Vec2& q, const Vec2& m, const Vec2& un,
                  double fp, double fq, double tp, double tq, Cuts& cuts) const {
     if (!opt.axis_ties) return false;
-    struct Extent { double lo, hi; };
     boost::container::small_vector<Extent, 8> ext;
     const Affine* shared = nullptr;
-    int across = 0;  // 0: x, 1: y
     const double tm = tol(m);
     for (std::size_t i = 0; i < n; ++i) {
       const Site& z = S[g[i]];
       if (!rectilinear(z)) return false;
-      // The piece beyond m: the steepest across among those at f's value there, as slope().
       const DistFn& fn = f[g[i]];
-      const double v = fn.at(m.x, m.y);
-      int best = -1;
-      double steepest = -INFINITY;
-      for (int k = 0; k < fn.n; ++k) {
-        const Affine& pc = fn.piece[k];
-        if (pc.at(m.x, m.y) < v - tm) continue;
-        const double d = pc.a * un.x + pc.b * un.y;
-        if (d > steepest) steepest = d, best = k;
-      }
-      const Affine& pc = fn.piece[best];
+      const Affine& pc = steepest(fn, m, un, fn.at(m.x, m.y), tm);
       if (std::fabs(pc.at(p.x, p.y) - fp) > tp || std::fabs(pc.at(q.x, q.y) - fq) > tq) return false;
-      if (!shared) shared = &pc, across = pc.b == 0 ? 1 : 0;
+      if (!shared) shared = &pc;
       else if (!same_affine(*shared, pc)) return false;
-      const double u = double(across ? z.a.y : z.a.x), w = double(across ? z.b.y : z.b.x);
-      ext.push_back({std::min(u, w), std::max(u, w)});
     }
+    const int across = across_of(*shared);
+    if (across < 0) return false;
+    for (std::size_t i = 0; i < n; ++i) ext.push_back(extent(S[g[i]], across));
     std::sort(ext.begin(), ext.end(), [](const Extent& x, const Extent& y) { return x.lo < y.lo || (x.lo == y.lo && x.hi < y.hi); });
     for (std::size_t i = 1; i < ext.size(); ++i)
-      if (!(ext[i].lo == ext[i - 1].lo && ext[i].hi == ext[i - 1].hi) && ext[i].lo < ext[i - 1].hi) return false;
+      if (!(ext[i] == ext[i - 1]) && ext[i].lo < ext[i - 1].hi) return false;
     const double bp = across ? p.y : p.x, bq = across ? q.y : q.x;
     if (bp == bq) return true;  // the edge runs along the gradient: the distances across are constant
-    auto add = [&](double at) {
-      const double s = (at - bp) / (bq - bp);
+    for (std::size_t i = 1; i < ext.size(); ++i) {
+      if (ext[i] == ext[i - 1]) continue;
+      const double s = (0.5 * (ext[i - 1].hi + ext[i].lo) - bp) / (bq - bp);
       if (s > 1e-12 && s < 1 - 1e-12) cuts.push_back(s);
-    };
-    for (std::size_t i = 1; i < ext.size(); ++i)
-      if (!(ext[i].lo == ext[i - 1].lo && ext[i].hi == ext[i - 1].hi)) add(0.5 * (ext[i - 1].hi + ext[i].lo));
+    }
     return true;
   }
 
