@@ -149,45 +149,73 @@ struct Model {
   }
 
   // The L1 tie-break along an edge p -> q of a region, between the sites g[0, n) that tie
-  // there in L-inf with the same least slope across it (Builder::emit; fp, fq and tp, tq: the
-  // tied value and its allowance at the edge's ends), where all are points or axis-parallel
-  // edges and one L-inf piece, the same for all, is each one's distance along the whole edge
-  // and just beyond it. Then, as in axis_order, each one's L1 distance along the edge is that
-  // piece plus the distance across to its extent, and the nearest extent is the owner beyond
-  // (equal extents: the rank). So it changes only where the edge crosses the midpoint of the
-  // gap between neighbouring extents: those parameters in (0, 1) go to `cuts`, where the
-  // general rule walks the lower envelope of the sites' L1 profiles and cuts at every
-  // breakpoint of them. False, and `cuts` untouched, where this does not apply.
+  // there in L-inf with the same least slope across it (Builder::emit; piece[i]: g[i]'s piece
+  // beyond the edge's midpoint; fp, fq and tp, tq: the tied value and its allowance at the
+  // edge's ends), where all are points or axis-parallel edges and one L-inf piece, the same for
+  // all, is each one's distance along the whole edge and just beyond it. Then, as in
+  // axis_order, each one's L1 distance along the edge is that piece plus the distance across to
+  // its extent, and the nearest extent is the owner beyond (equal extents: the rank). So it
+  // changes only where the edge crosses the midpoint of the gap between neighbouring extents:
+  // those parameters in (0, 1) go to `cuts`, where the general rule walks the lower envelope
+  // of the sites' L1 profiles and cuts at every breakpoint of them. Returns the axis across
+  // (0: x, 1: y) for axis_owner, or -1, and `cuts` untouched, where this does not apply.
   template <class Cuts>
-  bool axis_cuts(const int* g, std::size_t n, const Vec2& p, const Vec2& q, const Vec2& m, const Vec2& un,
-                 double fp, double fq, double tp, double tq, Cuts& cuts) const {
-    if (!opt.axis_ties) return false;
-    boost::container::small_vector<Extent, 8> ext;
-    const Affine* shared = nullptr;
-    const double tm = tol(m);
+  int axis_cuts(const int* g, const Affine* const* piece, std::size_t n, const Vec2& p, const Vec2& q, double fp,
+                double fq, double tp, double tq, Cuts& cuts) const {
+    if (!opt.axis_ties) return -1;
     for (std::size_t i = 0; i < n; ++i) {
-      const Site& z = S[g[i]];
-      if (!rectilinear(z)) return false;
-      const DistFn& fn = f[g[i]];
-      const Affine& pc = steepest(fn, m, un, fn.at(m.x, m.y), tm);
-      if (std::fabs(pc.at(p.x, p.y) - fp) > tp || std::fabs(pc.at(q.x, q.y) - fq) > tq) return false;
-      if (!shared) shared = &pc;
-      else if (!same_affine(*shared, pc)) return false;
+      if (!rectilinear(S[g[i]])) return -1;
+      const Affine& pc = *piece[i];
+      if (std::fabs(pc.at(p.x, p.y) - fp) > tp || std::fabs(pc.at(q.x, q.y) - fq) > tq) return -1;
+      if (i && !same_affine(*piece[0], pc)) return -1;
     }
-    const int across = across_of(*shared);
-    if (across < 0) return false;
+    const int across = across_of(*piece[0]);
+    if (across < 0) return -1;
+    boost::container::small_vector<Extent, 8> ext;
     for (std::size_t i = 0; i < n; ++i) ext.push_back(extent(S[g[i]], across));
     std::sort(ext.begin(), ext.end(), [](const Extent& x, const Extent& y) { return x.lo < y.lo || (x.lo == y.lo && x.hi < y.hi); });
     for (std::size_t i = 1; i < ext.size(); ++i)
-      if (!(ext[i] == ext[i - 1]) && ext[i].lo < ext[i - 1].hi) return false;
+      if (!(ext[i] == ext[i - 1]) && ext[i].lo < ext[i - 1].hi) return -1;
     const double bp = across ? p.y : p.x, bq = across ? q.y : q.x;
-    if (bp == bq) return true;  // the edge runs along the gradient: the distances across are constant
+    if (bp == bq) return across;  // the edge runs along the gradient: the distances across are constant
     for (std::size_t i = 1; i < ext.size(); ++i) {
       if (ext[i] == ext[i - 1]) continue;
       const double s = (0.5 * (ext[i - 1].hi + ext[i].lo) - bp) / (bq - bp);
       if (s > 1e-12 && s < 1 - 1e-12) cuts.push_back(s);
     }
-    return true;
+    return across;
+  }
+
+  // owner_beyond's answer at m (direction u, a unit vector) among the sites g[0, n) of an edge
+  // that axis_cuts took (`shared`: their L-inf piece, `across` its axis): their L1 distances
+  // there are `shared` plus the distance across to their extents, so those are what is
+  // compared (within the allowance), then their slopes along u (of the L1 pieces within the
+  // allowance, as Model::slope takes them), then the rank, without evaluating the functions.
+  // -1 within a few allowances of the sites, where the other halves of their L1 functions come
+  // within the allowance too: owner_beyond decides there.
+  int axis_owner(const int* g, std::size_t n, int across, const Affine& shared, const Vec2& m, const Vec2& u) const {
+    const double tl = tol(m);
+    if (shared.at(m.x, m.y) <= 4 * tl) return -1;
+    const double c = across ? m.y : m.x, dir = across ? u.y : u.x;
+    int best = -1;
+    double bv = 0, bs = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Extent e = extent(S[g[i]], across);
+      // The L1 pieces beyond m, less `shared`: below the extent, above it, and along it (an
+      // edge's own piece, where its extent across is not a point).
+      const double below = e.lo - c, above = c - e.hi, v = std::max({below, above, 0.0});
+      double s = -INFINITY;
+      if (below >= v - tl) s = std::max(s, -dir);
+      if (above >= v - tl) s = std::max(s, dir);
+      if (e.lo < e.hi && v <= tl) s = std::max(s, 0.0);
+      bool better;
+      if (best < 0) better = true;
+      else if (std::fabs(v - bv) > tl) better = v < bv;
+      else if (std::fabs(s - bs) > 1e-12) better = s < bs;
+      else better = rank_before(g[i], best);
+      if (better) best = g[i], bv = v, bs = s;
+    }
+    return best;
   }
 
   // The reference u's values at the corners of the grown box, computed once per box.

@@ -335,27 +335,38 @@ class Builder {
       any = true;
     }
     if (!any) return;
-    std::vector<LocalCell> next;
-    next.reserve(cells.size() + 4);
-    for (std::size_t ci = 0; ci < cells.size(); ++ci) {
-      LocalCell& lc = cells[ci];
-      if (!split[ci]) {
-        next.push_back(std::move(lc));
-        continue;
-      }
+    // A split cell's first part takes its place, the others go to the end: the cells' order
+    // decides nothing, and the cells that are not split are not moved.
+    const std::size_t n0 = cells.size();
+    for (std::size_t ci = 0; ci < n0; ++ci) {
+      if (!split[ci]) continue;
+      const Cell whole = std::move(cells[ci].cell);
+      const int ref = cells[ci].ref;
+      bool placed = false;
       for (int jj = 0; jj < fn.n; ++jj) {
-        if (Model::never_highest(fn, jj, lc.cell)) continue;
-        Cell c = lc.cell;
+        if (Model::never_highest(fn, jj, whole)) continue;
+        Cell c = whole;
         for (int i = 0; i < fn.n; ++i)
           if (i != jj && !detail::clip_in_place(c, minus(fn.piece[jj], fn.piece[i]))) break;
         if (c.empty()) continue;
-        LocalCell sub{std::move(c), lc.af, lc.ag, lc.ref, {}, {}};
+        if (!placed) {
+          LocalCell& lc = cells[ci];
+          lc.cell = std::move(c);
+          lc.ref_at.clear(), lc.tol_at.clear();
+          (use_g ? lc.ag : lc.af)[k] = static_cast<signed char>(jj);
+          if (!use_g) update_ref(lc, C, k);
+          placed = true;
+          continue;
+        }
+        LocalCell sub{std::move(c), cells[ci].af, cells[ci].ag, ref, {}, {}};
         (use_g ? sub.ag : sub.af)[k] = static_cast<signed char>(jj);
         if (!use_g) update_ref(sub, C, k);
-        next.push_back(std::move(sub));
+        cells.push_back(std::move(sub));
       }
+      if (!placed) cells[ci].cell = Cell{};  // nothing left of it (rounding)
     }
-    cells.swap(next);
+    cells.erase(std::remove_if(cells.begin(), cells.end(), [](const LocalCell& lc) { return lc.cell.empty(); }),
+                cells.end());
   }
 
   void solve(const Box& b, std::vector<int> C) {
@@ -458,8 +469,13 @@ class Builder {
     // One contender: its greatest value is below every other site's least one by the
     // allowance, so the cell is its region whole, with no tie on any edge: nothing to emit.
     if (order.size() == 1) return;
+    // A piece goes out from the region of the lower of its two sites (emit_piece), so the
+    // region of the highest contender has nothing to emit: it is not even cut out.
+    int top = -1;
+    for (const auto& oi : order) top = std::max(top, C[oi.second]);
     for (const auto& oi : order) {
       const std::size_t i = oi.second;
+      if (C[i] == top) continue;
       Cell r = lc.cell;
       for (const auto& oj : order) {
         const std::size_t j = oj.second;
@@ -532,23 +548,35 @@ class Builder {
       // Only sites that also share the least slope across the edge go to the L1 tie-break.
       const double len = std::hypot(nrm.x, nrm.y);
       const Vec2 un{nrm.x / len, nrm.y / len};
+      const double tm = m_.tol(m);
+      boost::container::small_vector<const Affine*, 8> beyond(tied.size());  // each one's piece beyond m
       boost::container::small_vector<double, 8> sl(tied.size());
       double smin = INFINITY;
+      for (std::size_t i = 0; i < tied.size(); ++i) {
+        const DistFn& fn = f_[tied[i]];
+        beyond[i] = &Model::steepest(fn, m, un, fn.at(m.x, m.y), tm);
+        smin = std::min(smin, sl[i] = beyond[i]->a * un.x + beyond[i]->b * un.y);
+      }
+      std::size_t least = 0, first = 0;
       for (std::size_t i = 0; i < tied.size(); ++i)
-        smin = std::min(smin, sl[i] = Model::slope(f_[tied[i]], m, un, f_[tied[i]].at(m.x, m.y), m_.tol(m)));
-      std::size_t least = 0;
-      for (std::size_t i = 0; i < tied.size(); ++i) least += sl[i] <= smin + 1e-12;
+        if (sl[i] <= smin + 1e-12) first = least++ ? first : i;
+      // One site alone at the least slope owns beyond the whole edge (Model::owner_beyond's
+      // first test): no L1 tie-break to walk, no part to ask about.
+      if (least == 1) {
+        emit_piece(p, q, t, tied[first]);
+        continue;
+      }
       boost::container::small_vector<double, 16> cuts{0.0, 1.0};
-      if (least > 1) {  // with one site alone at the least slope there is no L1 envelope to walk
-        boost::container::small_vector<int, 8> G;
-        for (std::size_t i = 0; i < tied.size(); ++i)
-          if (sl[i] <= smin + 1e-12) G.push_back(tied[i]);
-        if (!m_.axis_cuts(G.data(), G.size(), p, q, m, un, vp[tk], vq[tk], tl[e], tl[e2], cuts)) {
-          ++stats.envelopes;
-          boost::container::small_vector<Profile, 4> g;
-          for (int s : G) g.push_back(profile(g_[s], p, q));
-          envelope_cuts(g, cuts);
-        }
+      boost::container::small_vector<int, 8> G;
+      boost::container::small_vector<const Affine*, 8> GP;
+      for (std::size_t i = 0; i < tied.size(); ++i)
+        if (sl[i] <= smin + 1e-12) G.push_back(tied[i]), GP.push_back(beyond[i]);
+      const int across = m_.axis_cuts(G.data(), GP.data(), G.size(), p, q, vp[tk], vq[tk], tl[e], tl[e2], cuts);
+      if (across < 0) {
+        ++stats.envelopes;
+        boost::container::small_vector<Profile, 4> g;
+        for (int s : G) g.push_back(profile(g_[s], p, q));
+        envelope_cuts(g, cuts);
       }
       std::sort(cuts.begin(), cuts.end());
       // Neighbouring parts with the same owner beyond go out as one piece.
@@ -558,7 +586,9 @@ class Builder {
       for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
         if (cuts[i + 1] - cuts[i] <= 1e-9) continue;
         const Vec2 a = at(cuts[i]), b = at(cuts[i + 1]);
-        const int u = m_.owner_beyond({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, nrm, tied);
+        const Vec2 mid{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+        int u = across < 0 ? -1 : m_.axis_owner(G.data(), G.size(), across, *GP[0], mid, un);
+        if (u < 0) u = m_.owner_beyond(mid, nrm, tied);
         if (u != owner) {
           if (owner >= 0) emit_piece(at(from), a, t, owner);
           from = cuts[i], owner = u;
