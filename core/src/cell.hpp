@@ -22,12 +22,7 @@ inline Cell box_cell(const Box& b) {
   return c;
 }
 
-// Keeps the part where h >= 0. Values within rounding of zero count as on the line, so a
-// line through a vertex never produces a sliver.
-Cell clip(const Cell& in, const Affine& h);
-
-// The same in place, without copying when the half-plane holds the whole cell (the common
-// case). Returns false once the cell is empty.
+// Keeps the part of c where h >= 0, in place. Returns false once the cell is empty.
 bool clip_in_place(Cell& c, const Affine& h);
 
 double area(const Cell& c);

@@ -250,7 +250,7 @@ struct Model {
   // test has passed (rarely, for a site that is not dominated).
   bool dominated(const Reference& r, int t) const {
     if (r.u < 0 || t == r.u) return false;
-    const Side side = against(f[t], r.c, 4, r.fu, r.e);
+    const Side side = against(t, r.c, 4, r.fu, r.e);
     if (side == Side::Above) return true;
     if (against(g[t], r.c, 4, r.gu, r.e) != Side::Above) return false;
     return side == Side::Neither || covers(f[t], r);
@@ -296,6 +296,34 @@ struct Model {
       below = below && under;
     }
     return below ? Side::Below : Side::Neither;
+  }
+
+  // against() for a point or an axis-parallel edge z, whose L-inf pieces are x - X2, X1 - x,
+  // y - Y2 and Y1 - y over its box [X1, X2] x [Y1, Y2]: their values are differences of
+  // coordinates (the same doubles as the pieces give). It runs for most candidates of every
+  // box and every site of every cell.
+  static Side against_rect(const Site& z, const Vec2* pts, std::size_t n, const double* ref,
+                           const double* allowance) {
+    const double X1 = double(std::min(z.a.x, z.b.x)), X2 = double(std::max(z.a.x, z.b.x));
+    const double Y1 = double(std::min(z.a.y, z.b.y)), Y2 = double(std::max(z.a.y, z.b.y));
+    bool above[4] = {true, true, true, true}, under[4] = {false, false, false, false};
+    for (std::size_t k = 0; k < n; ++k) {
+      const double d[4] = {pts[k].x - X2 - ref[k], X1 - pts[k].x - ref[k], pts[k].y - Y2 - ref[k],
+                           Y1 - pts[k].y - ref[k]};
+      for (int i = 0; i < 4; ++i) {
+        above[i] = above[i] && d[i] > allowance[k];
+        under[i] = under[i] || d[i] < -allowance[k];
+      }
+    }
+    bool below = true;
+    for (int i = 0; i < 4; ++i) {
+      if (above[i]) return Side::Above;
+      below = below && under[i];
+    }
+    return below ? Side::Below : Side::Neither;
+  }
+  Side against(int t, const Vec2* pts, std::size_t n, const double* ref, const double* allowance) const {
+    return rectilinear(S[t]) ? against_rect(S[t], pts, n, ref, allowance) : against(f[t], pts, n, ref, allowance);
   }
 
   // The piece of f that is the maximum at every corner of the box, or -1.

@@ -289,7 +289,7 @@ class Builder {
       lc.ref_at.resize(v.size()), lc.tol_at.resize(v.size());
       for (std::size_t k = 0; k < v.size(); ++k) lc.ref_at[k] = q.at(v[k].x, v[k].y), lc.tol_at[k] = m_.tol(v[k]);
     }
-    return Model::against(f_[C[t]], v.data(), v.size(), lc.ref_at.data(), lc.tol_at.data()) == Model::Side::Above;
+    return m_.against(C[t], v.data(), v.size(), lc.ref_at.data(), lc.tol_at.data()) == Model::Side::Above;
   }
 
   // The reference of a cell after site k became affine on it: whichever of the two has the
