@@ -1,5 +1,6 @@
 #include "linf/checker.hpp"
 
+#include <boost/container/small_vector.hpp>
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 #include <algorithm>
@@ -36,13 +37,24 @@ class SiteTree {
           return IntBox{std::int32_t(std::min(t.a.x, t.b.x)), std::int32_t(std::min(t.a.y, t.b.y)),
                         std::int32_t(std::max(t.a.x, t.b.x)), std::int32_t(std::max(t.a.y, t.b.y))};
         }) {}
-  // Sites strictly closer than r to (x, y).
+  // For the points (x[i], y[i]), i < n: f(i, site, distance) for every site strictly closer
+  // than r[i] to point i. One search of the index for all of them: a piece's samples are close
+  // together, and the search costs more than the distances.
   template <class F>
-  void within(double x, double y, double r, F&& f) const {
-    if (r <= 0) return;
-    tree_.query(square(x, y, r), [&](std::int32_t i) {
-      const double d = dist_site(x, y, s_[i]);
-      if (d < r) f(i, d);
+  void closer_than(const double* x, const double* y, const double* r, std::size_t n, F&& f) const {
+    IntBox q{INT32_MAX, INT32_MAX, INT32_MIN, INT32_MIN};
+    for (std::size_t i = 0; i < n; ++i) {
+      if (r[i] <= 0) continue;
+      const IntBox b = square(x[i], y[i], r[i]);
+      q = {std::min(q.x1, b.x1), std::min(q.y1, b.y1), std::max(q.x2, b.x2), std::max(q.y2, b.y2)};
+    }
+    if (q.x1 > q.x2) return;
+    tree_.query(q, [&](std::int32_t s) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (r[i] <= 0) continue;
+        const double d = dist_site(x[i], y[i], s_[s]);
+        if (d < r[i]) f(i, s, d);
+      }
     });
   }
   void k_nearest(double x, double y, unsigned k, std::vector<std::int32_t>& out) const {
@@ -200,34 +212,41 @@ struct Checker::Impl {
       CheckReport& r = part[c];
       for (std::size_t pi = c * chunk; pi < std::min(n, (c + 1) * chunk); ++pi) {
         const Piece& pc = pieces[pi];
+        boost::container::small_vector<double, 8> xs(k), ys(k), da(k), db(k), radius(k);
         for (int i = 0; i < k; ++i) {
           const double t = double(i) / double(k - 1);
-          const double x = pc.p.x + t * (pc.q.x - pc.p.x), y = pc.p.y + t * (pc.q.y - pc.p.y);
-          const double da = dist_site(x, y, S[pc.a]), db = dist_site(x, y, S[pc.b]);
+          xs[i] = pc.p.x + t * (pc.q.x - pc.p.x), ys[i] = pc.p.y + t * (pc.q.y - pc.p.y);
+          da[i] = dist_site(xs[i], ys[i], S[pc.a]), db[i] = dist_site(xs[i], ys[i], S[pc.b]);
+          radius[i] = std::min(da[i], db[i]) - tol;
+        }
+        auto where = [&](int i) {  // formatted on failure only: sampling runs by the million
+          std::ostringstream w;
+          w.precision(12);
+          w << "(" << xs[i] << "," << ys[i] << ") owners " << pc.a << "," << pc.b << " da=" << da[i] << " db=" << db[i];
+          return w.str();
+        };
+        for (int i = 0; i < k; ++i) {
           ++r.sampled_points;
-          r.worst_error = std::max(r.worst_error, std::fabs(da - db));
-          auto where = [&] {  // formatted on failure only: sampling runs by the million
-            std::ostringstream w;
-            w.precision(12);
-            w << "(" << x << "," << y << ") owners " << pc.a << "," << pc.b << " da=" << da << " db=" << db;
-            return w.str();
-          };
-          if (std::fabs(da - db) > tol) fail(r, r.equidistance_errors, "not equidistant at " + where());
+          r.worst_error = std::max(r.worst_error, std::fabs(da[i] - db[i]));
+          if (std::fabs(da[i] - db[i]) > tol) fail(r, r.equidistance_errors, "not equidistant at " + where(i));
           if (i == 0 || i == k - 1) {
             const double stated = i == 0 ? pc.d1 : pc.d2;
-            r.worst_error = std::max(r.worst_error, std::fabs(stated - da));
-            if (std::fabs(stated - da) > tol) fail(r, r.clearance_errors, "wrong clearance at " + where());
+            r.worst_error = std::max(r.worst_error, std::fabs(stated - da[i]));
+            if (std::fabs(stated - da[i]) > tol) fail(r, r.clearance_errors, "wrong clearance at " + where(i));
           }
-          const double dmin = std::min(da, db);
-          std::int32_t closer = -1;
-          double dc = 0;
-          sites.within(x, y, dmin - tol, [&](std::int32_t s, double ds) { closer = s, dc = ds; });
-          if (closer >= 0) {
-            r.worst_error = std::max(r.worst_error, dmin - dc);
-            std::ostringstream m;
-            m << "site " << closer << " at " << dc << " is closer than the owners at " << where();
-            fail(r, r.closer_site_errors, m.str());
-          }
+        }
+        // The nearest site closer than the owners, at each sample.
+        boost::container::small_vector<std::int32_t, 8> closer(k, -1);
+        boost::container::small_vector<double, 8> dc(k, INFINITY);
+        sites.closer_than(xs.data(), ys.data(), radius.data(), std::size_t(k), [&](std::size_t i, std::int32_t s, double d) {
+          if (d < dc[i]) closer[i] = s, dc[i] = d;
+        });
+        for (int i = 0; i < k; ++i) {
+          if (closer[i] < 0) continue;
+          r.worst_error = std::max(r.worst_error, radius[i] + tol - dc[i]);
+          std::ostringstream m;
+          m << "site " << closer[i] << " at " << dc[i] << " is closer than the owners at " << where(i);
+          fail(r, r.closer_site_errors, m.str());
         }
         const BBox b(BPt(std::min(pc.p.x, pc.q.x), std::min(pc.p.y, pc.q.y)),
                      BPt(std::max(pc.p.x, pc.q.x), std::max(pc.p.y, pc.q.y)));

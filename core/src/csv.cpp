@@ -29,7 +29,7 @@ void append_fixed6(std::string& out, double x) {
       do *--s = char('0' + n % 10), n /= 10;
       while (n);
       if (std::signbit(x)) *--s = '-';
-      out.append(s, end);
+      out.append(s, std::size_t(end - s));
       return;
     }
   }
@@ -37,7 +37,7 @@ void append_fixed6(std::string& out, double x) {
   // 309 digits before the point.
   char num[400];
   const auto r = std::to_chars(num, num + sizeof num, x, std::chars_format::fixed, 6);
-  out.append(num, r.ptr);
+  out.append(num, std::size_t(r.ptr - num));
 }
 
 namespace {

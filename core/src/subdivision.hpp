@@ -501,20 +501,24 @@ class Builder {
             const Contenders& contenders) {
     const int t = C[ti];
     const std::size_t n = r.v.size();
-    // Every contender's value and the allowance at every vertex, once: each vertex is the end
-    // of two edges, and the tie test below reads them for every contender.
-    const std::size_t k = contenders.size();
+    // A piece goes out from the side of the lower site (emit_piece), so an edge matters only
+    // where a contender above t ties with t along it. Their values and t's, and the allowance,
+    // at every vertex once: each vertex is the end of two edges. The contenders below t are
+    // asked only on those edges, for the owner beyond.
+    boost::container::small_vector<std::size_t, 16> up, down;  // contenders' places above t, below t
+    for (std::size_t j = 0; j < contenders.size(); ++j) {
+      const std::size_t cj = contenders[j].second;
+      if (cj != ti) (C[cj] > t ? up : down).push_back(cj);
+    }
+    if (up.empty()) return;
+    const std::size_t k = up.size() + 1;  // t, then those above it
+    auto value = [&](std::size_t cj, const Vec2& v) { return f_[C[cj]].piece[lc.af[cj]].at(v.x, v.y); };
     boost::container::small_vector<double, 160> val(n * k);
     boost::container::small_vector<double, 10> tl(n);
-    std::size_t tk = 0;  // t's place among the contenders
-    for (std::size_t j = 0; j < k; ++j)
-      if (contenders[j].second == ti) tk = j;
     for (std::size_t v = 0; v < n; ++v) {
       tl[v] = m_.tol(r.v[v]);
-      for (std::size_t j = 0; j < k; ++j) {
-        const std::size_t cj = contenders[j].second;
-        val[v * k + j] = f_[C[cj]].piece[lc.af[cj]].at(r.v[v].x, r.v[v].y);
-      }
+      val[v * k] = value(ti, r.v[v]);
+      for (std::size_t j = 1; j < k; ++j) val[v * k + j] = value(up[j - 1], r.v[v]);
     }
     for (std::size_t e = 0; e < n; ++e) {
       const Vec2 p = r.v[e], q = r.v[(e + 1) % n];
@@ -535,16 +539,13 @@ class Builder {
       const double* vp = &val[e * k];
       const double* vq = &val[e2 * k];
       boost::container::small_vector<int, 8> tied{t};
-      for (std::size_t j = 0; j < k; ++j) {
-        if (j == tk) continue;
-        if (std::fabs(vp[j] - vp[tk]) <= tl[e] && std::fabs(vq[j] - vq[tk]) <= tl[e2])
-          tied.push_back(C[contenders[j].second]);
-      }
+      for (std::size_t j = 1; j < k; ++j)
+        if (std::fabs(vp[j] - vp[0]) <= tl[e] && std::fabs(vq[j] - vq[0]) <= tl[e2]) tied.push_back(C[up[j - 1]]);
+      if (tied.size() == 1) continue;  // t's own region goes on beyond, or a site below t reports it
+      for (const std::size_t cj : down)
+        if (std::fabs(value(cj, p) - vp[0]) <= tl[e] && std::fabs(value(cj, q) - vq[0]) <= tl[e2])
+          tied.push_back(C[cj]);
       std::sort(tied.begin() + 1, tied.end());  // the sites' order, as C's: near-ties decide alike
-      if (tied.size() == 1) continue;  // a split inside t's own region
-      // The owner beyond is one of the tied; emit_piece keeps only t < owner (the other side
-      // reports the rest), so where all come before t there is nothing to emit.
-      if (*std::max_element(tied.begin() + 1, tied.end()) < t) continue;
       // Only sites that also share the least slope across the edge go to the L1 tie-break.
       const double len = std::hypot(nrm.x, nrm.y);
       const Vec2 un{nrm.x / len, nrm.y / len};
@@ -571,7 +572,7 @@ class Builder {
       boost::container::small_vector<const Affine*, 8> GP;
       for (std::size_t i = 0; i < tied.size(); ++i)
         if (sl[i] <= smin + 1e-12) G.push_back(tied[i]), GP.push_back(beyond[i]);
-      const int across = m_.axis_cuts(G.data(), GP.data(), G.size(), p, q, vp[tk], vq[tk], tl[e], tl[e2], cuts);
+      const int across = m_.axis_cuts(G.data(), GP.data(), G.size(), p, q, vp[0], vq[0], tl[e], tl[e2], cuts);
       if (across < 0) {
         ++stats.envelopes;
         boost::container::small_vector<Profile, 4> g;
