@@ -1,6 +1,7 @@
 #include "cell.hpp"
 
 #include <cmath>
+#include <vector>
 
 namespace linf::detail {
 
@@ -11,8 +12,12 @@ bool clip_in_place(Cell& c, const Affine& h) {
   const std::size_t n = c.v.size();
   if (n < 3) return false;
   // Values within rounding of zero count as on the line, so a line through a vertex never
-  // produces a sliver.
-  boost::container::small_vector<double, 16> val(n, boost::container::default_init);
+  // produces a sliver. On the stack for the usual cells, of a few vertices.
+  constexpr std::size_t kInline = 32;
+  double inline_val[kInline];
+  std::vector<double> heap_val;
+  double* val = inline_val;
+  if (n > kInline) heap_val.resize(n), val = heap_val.data();
   bool cuts = false, keeps = false;
   for (std::size_t i = 0; i < n; ++i) {
     double v = h.at(c.v[i].x, c.v[i].y);
@@ -26,7 +31,7 @@ bool clip_in_place(Cell& c, const Affine& h) {
     c.v.clear();
     return false;
   }
-  boost::container::small_vector<Vec2, 12> out;
+  boost::container::small_vector<Vec2, kInline + 2> out;
   // Rounding can repeat a vertex: such repeats are dropped as they come.
   auto push = [&](const Vec2& p) {
     if (out.empty() || out.back().x != p.x || out.back().y != p.y) out.push_back(p);

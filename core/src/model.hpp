@@ -306,20 +306,23 @@ struct Model {
                            const double* allowance) {
     const double X1 = double(std::min(z.a.x, z.b.x)), X2 = double(std::max(z.a.x, z.b.x));
     const double Y1 = double(std::min(z.a.y, z.b.y)), Y2 = double(std::max(z.a.y, z.b.y));
-    bool above[4] = {true, true, true, true}, under[4] = {false, false, false, false};
-    for (std::size_t k = 0; k < n; ++k) {
-      const double d[4] = {pts[k].x - X2 - ref[k], X1 - pts[k].x - ref[k], pts[k].y - Y2 - ref[k],
-                           Y1 - pts[k].y - ref[k]};
-      for (int i = 0; i < 4; ++i) {
-        above[i] = above[i] && d[i] > allowance[k];
-        under[i] = under[i] || d[i] < -allowance[k];
-      }
-    }
+    // As against(): a piece is given up at the first point where it is not above and some
+    // point where it is below (most pieces, at their first or second point).
     bool below = true;
-    for (int i = 0; i < 4; ++i) {
-      if (above[i]) return Side::Above;
-      below = below && under[i];
-    }
+    auto piece = [&](auto value) {
+      bool above = true, under = false;
+      for (std::size_t k = 0; k < n; ++k) {
+        const double d = value(pts[k]) - ref[k];
+        above = above && d > allowance[k];
+        under = under || d < -allowance[k];
+        if (!above && under) break;
+      }
+      below = below && under;
+      return above;
+    };
+    if (piece([X2](const Vec2& p) { return p.x - X2; }) || piece([X1](const Vec2& p) { return X1 - p.x; }) ||
+        piece([Y2](const Vec2& p) { return p.y - Y2; }) || piece([Y1](const Vec2& p) { return Y1 - p.y; }))
+      return Side::Above;
     return below ? Side::Below : Side::Neither;
   }
   Side against(int t, const Vec2* pts, std::size_t n, const double* ref, const double* allowance) const {
@@ -330,6 +333,40 @@ struct Model {
   static int affine_piece(const DistFn& f, const Box& b) {
     const int j = f.argmax(b.x1, b.y1);
     if (f.argmax(b.x2, b.y1) != j || f.argmax(b.x2, b.y2) != j || f.argmax(b.x1, b.y2) != j) return -1;
+    return j;
+  }
+
+  // The piece of fn that is its maximum at every vertex of the cell (within rounding), so on
+  // the whole cell; -1 if there is none.
+  static int affine_on(const DistFn& fn, const Cell& c) {
+    const int j = fn.argmax(c.v[0].x, c.v[0].y);
+    for (const Vec2& p : c.v)
+      if (fn.piece[j].at(p.x, p.y) < fn.at(p.x, p.y) - 16 * fn.piece[j].err(p.x, p.y)) return -1;
+    return j;
+  }
+  // The same for site t's L-inf function; for a point or an axis-parallel edge from its box's
+  // sides (its pieces x - X2, X1 - x, y - Y2, Y1 - y: the same doubles as the pieces give),
+  // for every site of every cell.
+  int affine_on(int t, const Cell& c) const {
+    const Site& z = S[t];
+    if (!rectilinear(z)) return affine_on(f[t], c);
+    const double X1 = double(std::min(z.a.x, z.b.x)), X2 = double(std::max(z.a.x, z.b.x));
+    const double Y1 = double(std::min(z.a.y, z.b.y)), Y2 = double(std::max(z.a.y, z.b.y));
+    const double C[4] = {X2, X1, Y2, Y1};  // each piece's constant's magnitude, for its rounding bound
+    auto values = [&](const Vec2& p, double v[4]) {
+      v[0] = p.x - X2, v[1] = X1 - p.x, v[2] = p.y - Y2, v[3] = Y1 - p.y;
+    };
+    double v[4];
+    values(c.v[0], v);
+    int j = 0;
+    for (int i = 1; i < 4; ++i)
+      if (v[i] > v[j]) j = i;
+    for (const Vec2& p : c.v) {
+      values(p, v);
+      const double top = std::max({v[0], v[1], v[2], v[3]});
+      const double err = 1e-14 * (std::fabs(j < 2 ? p.x : p.y) + std::fabs(C[j]) + 1.0);
+      if (v[j] < top - 16 * err) return -1;
+    }
     return j;
   }
 

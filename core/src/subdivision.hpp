@@ -320,13 +320,8 @@ class Builder {
         act[k] = kAbsent;
         continue;
       }
-      int j = fn.argmax(lc.cell.v[0].x, lc.cell.v[0].y);
-      bool affine = true;
-      for (const Vec2& p : lc.cell.v) {
-        const double top = fn.at(p.x, p.y);
-        if (fn.piece[j].at(p.x, p.y) < top - 16 * fn.piece[j].err(p.x, p.y)) { affine = false; break; }
-      }
-      if (affine) {
+      const int j = use_g ? Model::affine_on(fn, lc.cell) : m_.affine_on(C[k], lc.cell);
+      if (j >= 0) {
         act[k] = static_cast<signed char>(j);
         if (!use_g) update_ref(lc, C, k);
         continue;
@@ -513,8 +508,8 @@ class Builder {
     if (up.empty()) return;
     const std::size_t k = up.size() + 1;  // t, then those above it
     auto value = [&](std::size_t cj, const Vec2& v) { return f_[C[cj]].piece[lc.af[cj]].at(v.x, v.y); };
-    boost::container::small_vector<double, 160> val(n * k);
-    boost::container::small_vector<double, 10> tl(n);
+    boost::container::small_vector<double, 160> val(n * k, boost::container::default_init);
+    boost::container::small_vector<double, 10> tl(n, boost::container::default_init);
     for (std::size_t v = 0; v < n; ++v) {
       tl[v] = m_.tol(r.v[v]);
       val[v * k] = value(ti, r.v[v]);
