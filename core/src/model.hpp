@@ -336,40 +336,6 @@ struct Model {
     return j;
   }
 
-  // The piece of fn that is its maximum at every vertex of the cell (within rounding), so on
-  // the whole cell; -1 if there is none.
-  static int affine_on(const DistFn& fn, const Cell& c) {
-    const int j = fn.argmax(c.v[0].x, c.v[0].y);
-    for (const Vec2& p : c.v)
-      if (fn.piece[j].at(p.x, p.y) < fn.at(p.x, p.y) - 16 * fn.piece[j].err(p.x, p.y)) return -1;
-    return j;
-  }
-  // The same for site t's L-inf function; for a point or an axis-parallel edge from its box's
-  // sides (its pieces x - X2, X1 - x, y - Y2, Y1 - y: the same doubles as the pieces give),
-  // for every site of every cell.
-  int affine_on(int t, const Cell& c) const {
-    const Site& z = S[t];
-    if (!rectilinear(z)) return affine_on(f[t], c);
-    const double X1 = double(std::min(z.a.x, z.b.x)), X2 = double(std::max(z.a.x, z.b.x));
-    const double Y1 = double(std::min(z.a.y, z.b.y)), Y2 = double(std::max(z.a.y, z.b.y));
-    const double C[4] = {X2, X1, Y2, Y1};  // each piece's constant's magnitude, for its rounding bound
-    auto values = [&](const Vec2& p, double v[4]) {
-      v[0] = p.x - X2, v[1] = X1 - p.x, v[2] = p.y - Y2, v[3] = Y1 - p.y;
-    };
-    double v[4];
-    values(c.v[0], v);
-    int j = 0;
-    for (int i = 1; i < 4; ++i)
-      if (v[i] > v[j]) j = i;
-    for (const Vec2& p : c.v) {
-      values(p, v);
-      const double top = std::max({v[0], v[1], v[2], v[3]});
-      const double err = 1e-14 * (std::fabs(j < 2 ? p.x : p.y) + std::fabs(C[j]) + 1.0);
-      if (v[j] < top - 16 * err) return -1;
-    }
-    return j;
-  }
-
   // Is piece j of fn below another piece at every vertex of the cell, beyond rounding? Both are
   // affine, so it is below it on the whole cell: j is nowhere the maximum, and clipping the
   // cell down to where it is would only find that out, one copy of the cell at a time.

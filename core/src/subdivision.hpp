@@ -320,8 +320,13 @@ class Builder {
         act[k] = kAbsent;
         continue;
       }
-      const int j = use_g ? Model::affine_on(fn, lc.cell) : m_.affine_on(C[k], lc.cell);
-      if (j >= 0) {
+      int j = fn.argmax(lc.cell.v[0].x, lc.cell.v[0].y);
+      bool affine = true;
+      for (const Vec2& p : lc.cell.v) {
+        const double top = fn.at(p.x, p.y);
+        if (fn.piece[j].at(p.x, p.y) < top - 16 * fn.piece[j].err(p.x, p.y)) { affine = false; break; }
+      }
+      if (affine) {
         act[k] = static_cast<signed char>(j);
         if (!use_g) update_ref(lc, C, k);
         continue;
