@@ -72,25 +72,34 @@ class BoxTree {
 
   std::size_t size() const { return ids_.size(); }
 
-  // f(id) for every box that intersects q.
+  // f(id) for every box that intersects q, in the order of the leaves.
   template <class F>
   void query(const IntBox& q, F&& f) const {
     if (ids_.empty()) return;
+    const int root_level = int(level_.size()) - 1;
+    if (!boxes_[level_[std::size_t(root_level)]].intersects(q)) return;
+    if (root_level == 0) {
+      f(ids_[0]);
+      return;
+    }
+    // Only nodes that meet q go on the stack: a node's children are tested where it is taken
+    // off, most of them missing (the checker's queries are a few DBU, the nodes 16 boxes).
     Node stack[16 * kNode];  // kNode - 1 siblings left at most per level, and at most 9 levels
     int top = 0;
-    const int root_level = int(level_.size()) - 1;
     stack[top++] = pack(root_level, 0);
     while (top > 0) {
       const Node e = stack[--top];
       const int lv = int(e >> 40);
       const std::size_t at = std::size_t(e & kIndexMask);
-      if (!boxes_[level_[std::size_t(lv)] + at].intersects(q)) continue;
-      if (lv == 0) {
-        f(ids_[at]);
+      const std::size_t first = at * kNode, last = std::min(first + kNode, level_size(lv - 1));
+      const IntBox* child = &boxes_[level_[std::size_t(lv - 1)]];
+      if (lv == 1) {
+        for (std::size_t c = first; c < last; ++c)
+          if (child[c].intersects(q)) f(ids_[c]);
         continue;
       }
-      const std::size_t first = at * kNode, last = std::min(first + kNode, level_size(lv - 1));
-      for (std::size_t c = last; c-- > first;) stack[top++] = pack(lv - 1, c);
+      for (std::size_t c = last; c-- > first;)
+        if (child[c].intersects(q)) stack[top++] = pack(lv - 1, c);
     }
   }
 
