@@ -61,8 +61,12 @@ class Builder {
     std::vector<int> keep;
     keep.reserve(cand.size());
     const Model::Reference ref = m_.reference(b, best);
-    for (int t : cand)
-      if (box_distance(b, S_[t]) <= U + tau_ && !m_.dominated(ref, t)) keep.push_back(t);
+    for (int t : cand) {
+      // A site that meets the box is at distance 0 there: no other site comes before it there
+      // (Model::dominated could only say no).
+      const double lower = box_distance(b, S_[t]);
+      if (lower <= U + tau_ && (lower == 0 || !m_.dominated(ref, t))) keep.push_back(t);
+    }
     if (keep.size() > 2) prune_ties(b, keep);
     return keep;
   }
@@ -86,6 +90,10 @@ class Builder {
     kept.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
       bool dominated = false;
+      if (box_distance(b, S_[keep[i]]) == 0) {  // it meets the box: see candidates()
+        kept.push_back(keep[i]);
+        continue;
+      }
       for (std::size_t j = 0; j < n && !dominated; ++j) {
         if (j == i || !(fc[i] > fc[j] + e || (fc[i] >= fc[j] - e && gc[i] > gc[j] + e))) continue;
         if (refs[j].u < 0) refs[j] = m_.reference(b, keep[j]);
