@@ -597,7 +597,7 @@ class Builder {
         const Vec2 a = at(cuts[i]), b = at(cuts[i + 1]);
         const Vec2 mid{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
         int u = across < 0 ? -1 : m_.axis_owner(G.data(), G.size(), across, *GP[0], mid, un);
-        if (u < 0) u = m_.owner_beyond(mid, nrm, tied);
+        if (u < 0) u = m_.owner_beyond(mid, nrm, tied), ++stats.owners_evaluated;
         if (u != owner) {
           if (owner >= 0) emit_piece(at(from), a, t, owner);
           from = cuts[i], owner = u;
@@ -660,6 +660,7 @@ void collect(const Model& m, const std::vector<Builder>& workers, BuildStats& st
     st.boxes += w.stats.boxes, st.solves += w.stats.solves, st.solved_sites += w.stats.solved_sites;
     st.solved_pairs += w.stats.solved_pairs;
     st.tie_cells += w.stats.tie_cells, st.envelopes += w.stats.envelopes;
+    st.owners_evaluated += w.stats.owners_evaluated;
     st.cells += w.stats.cells;
   }
   st.raw_pieces += raw.size();

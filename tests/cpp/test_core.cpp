@@ -377,11 +377,12 @@ TEST(Builder, EveryCandidateIsAReferenceInSmallBoxes) {
 // Where points and axis-parallel edges tie in L-inf, the L1 tie-break between two of them is
 // the 1-D one between their extents across the shared piece's gradient: a half-plane at the
 // midpoint of the gap, or the rank (Model::axis_order); along a region's edge, the owner
-// beyond changes only at the gaps' midpoints (Model::axis_cuts).
-// Without them those cells were cut by every L1 piece of the tied sites, and the edges' L1
-// profiles walked. The same pieces either way; on a block of 36 random Manhattan fields no
-// cell is cut and no envelope walked for the tie-break any more; on a block with 45-degree
-// shapes only where a slanted edge ties. And the checker passes.
+// beyond changes only at the gaps' midpoints (Model::axis_cuts), and is the nearest extent
+// (Model::axis_owner). Without them those cells were cut by every L1 piece of the tied sites,
+// the edges' L1 profiles walked and every tied site's functions evaluated for the owner
+// beyond. The same pieces either way; on a block of 36 random Manhattan fields none of that
+// is done any more; on a block with 45-degree shapes only where a slanted edge ties. And the
+// checker passes.
 TEST(Builder, ManhattanTiesAreHalfPlanes) {
   using linf::testing::Style;
   for (const Style style : {Style::Rectilinear, Style::Octilinear}) {
@@ -395,14 +396,23 @@ TEST(Builder, ManhattanTiesAreHalfPlanes) {
     RecordProperty(style == Style::Rectilinear ? "tie_cells" : "tie_cells_45", int(st_axis.tie_cells));
     RecordProperty(style == Style::Rectilinear ? "envelopes_general" : "envelopes_general_45", int(st_general.envelopes));
     RecordProperty(style == Style::Rectilinear ? "envelopes" : "envelopes_45", int(st_axis.envelopes));
+    RecordProperty(style == Style::Rectilinear ? "owners_evaluated_general" : "owners_evaluated_general_45",
+                   int(st_general.owners_evaluated));
+    RecordProperty(style == Style::Rectilinear ? "owners_evaluated" : "owners_evaluated_45", int(st_axis.owners_evaluated));
+    std::printf("%s: tie cells %zu -> %zu, envelopes %zu -> %zu, owners evaluated %zu -> %zu\n",
+                style == Style::Rectilinear ? "rectilinear" : "octilinear", st_general.tie_cells, st_axis.tie_cells,
+                st_general.envelopes, st_axis.envelopes, st_general.owners_evaluated, st_axis.owners_evaluated);
     EXPECT_GT(st_general.tie_cells, 0u);
     EXPECT_GT(st_general.envelopes, 0u);
-    if (style == Style::Rectilinear) {
+    EXPECT_GT(st_general.owners_evaluated, 0u);
+    if (style == Style::Rectilinear) {  // the owners beyond Manhattan ties from the extents alone
       EXPECT_EQ(st_axis.tie_cells, 0u);
       EXPECT_EQ(st_axis.envelopes, 0u);
+      EXPECT_EQ(st_axis.owners_evaluated, 0u);
     } else {
       EXPECT_LT(st_axis.tie_cells, st_general.tie_cells);
       EXPECT_LT(st_axis.envelopes, st_general.envelopes);
+      EXPECT_LT(st_axis.owners_evaluated, st_general.owners_evaluated);
     }
     expect_same_lengths(a, b);
     EXPECT_NO_THROW(voronoi_of_polygons(p, DiagramOptions{}));  // the checker passes

@@ -45,6 +45,8 @@ struct BuildStats {
   std::size_t solved_pairs = 0;  // the local solves' sizes squared, summed: their cost grows so
   std::size_t tie_cells = 0;     // cells cut by L1 pieces for the tie-break
   std::size_t envelopes = 0;     // region edges along which the L1 profiles' envelope was walked
+  std::size_t owners_evaluated = 0;  // parts of region edges whose owner beyond took every tied
+                                    // site's functions (Model::owner_beyond, not axis_owner)
   std::size_t tiles = 0, tasks = 0, largest_tile_sites = 0;
 };
 
