@@ -566,9 +566,9 @@ class Builder {
         beyond[i] = &Model::steepest(fn, m, un, fn.at(m.x, m.y), tm);
         smin = std::min(smin, sl[i] = beyond[i]->a * un.x + beyond[i]->b * un.y);
       }
-      std::size_t least = 0, first = 0;
+      std::size_t least = 0, first = 0;  // how many have the least slope, and the first of them
       for (std::size_t i = 0; i < tied.size(); ++i)
-        if (sl[i] <= smin + 1e-12) first = least++ ? first : i;
+        if (sl[i] <= smin + 1e-12 && least++ == 0) first = i;
       // One site alone at the least slope owns beyond the whole edge (Model::owner_beyond's
       // first test): no L1 tie-break to walk, no part to ask about.
       if (least == 1) {
