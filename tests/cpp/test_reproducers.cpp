@@ -89,3 +89,30 @@ TEST(Reproducers, CheckerRejectsAShiftedPiece) {
   d.pieces[0].p.x += 3, d.pieces[0].q.x += 3;
   EXPECT_FALSE(check_diagram(d).ok());
 }
+
+// A piece equidistant from its two owners at the stated clearances, but with a third site
+// closer: the points A (0,0) and B (10,0), their bisector x = 5 claimed from y = -20 to 20
+// straight through C (5,2). Only the closer-site test can see it.
+TEST(Reproducers, CheckerRejectsAPiecePastACloserSite) {
+  Diagram d;
+  d.sites = sites_of_plain({{0, 0}, {10, 0}, {5, 2}}, {});
+  d.clip = clip_box(d.sites);
+  Piece p;
+  p.p = {5, -20}, p.q = {5, 20};
+  p.d1 = p.d2 = 20;
+  for (std::size_t i = 0; i < d.sites.sites.size(); ++i) {
+    const Site& s = d.sites.sites[i];
+    if (s.a.x == 0 && s.a.y == 0) p.a = std::int32_t(i);
+    if (s.a.x == 10 && s.a.y == 0) p.b = std::int32_t(i);
+  }
+  d.pieces = {p};
+  CheckOptions o;
+  o.samples_per_piece = 5;
+  const CheckReport rep = check_diagram(d, o);
+  EXPECT_EQ(rep.equidistance_errors, 0u);
+  EXPECT_EQ(rep.clearance_errors, 0u);
+  // Samples at y = -20, -10, 0, 10, 20: C is at 22, 12, 2, 8, 18 against the owners' 20, 10,
+  // 5, 10, 20, so closer at the last three.
+  EXPECT_EQ(rep.closer_site_errors, 3u);
+  EXPECT_FALSE(rep.ok());
+}
