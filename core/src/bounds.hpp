@@ -73,7 +73,7 @@ bool clip_to_box(double px, double py, double qx, double qy, const Box& b, doubl
 // of one of them (both are convex polygons and the unit ball is a polygon).
 // The same holds for L1, whose breakpoints along a segment are only the axis crossings.
 double box_distance(const Box& b, const Site& s, bool l1 = false) {
-  if (s.a.x == s.b.x || s.a.y == s.b.y) {  // a point or an axis-parallel edge: a box itself
+  if (rectilinear(s)) {
     const double gx = std::max({b.x1 - double(std::max(s.a.x, s.b.x)), double(std::min(s.a.x, s.b.x)) - b.x2, 0.0});
     const double gy = std::max({b.y1 - double(std::max(s.a.y, s.b.y)), double(std::min(s.a.y, s.b.y)) - b.y2, 0.0});
     return l1 ? gx + gy : std::max(gx, gy);

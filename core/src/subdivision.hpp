@@ -644,6 +644,14 @@ class Builder {
   const double tau_;
 };
 
+// The work counts of `from` added to `to` (a worker's, or the ended tiles'); the tiles'
+// own counts (tiles, tasks, the largest tile) are kept by the caller.
+void add_work(BuildStats& to, const BuildStats& from) {
+  to.boxes += from.boxes, to.solves += from.solves, to.solved_sites += from.solved_sites;
+  to.solved_pairs += from.solved_pairs, to.cells += from.cells, to.raw_pieces += from.raw_pieces;
+  to.tie_cells += from.tie_cells, to.envelopes += from.envelopes, to.owners_evaluated += from.owners_evaluated;
+}
+
 // The workers' pieces, with global site ids, joined (about a third of the raw pieces remain),
 // into `raw` (its capacity kept: tile after tile it is the same buffer, not fresh pages); their
 // counts added to `st`.
@@ -657,11 +665,7 @@ void collect(const Model& m, const std::vector<Builder>& workers, BuildStats& st
       p.a = m.global[p.a], p.b = m.global[p.b];
       raw.push_back(p);
     }
-    st.boxes += w.stats.boxes, st.solves += w.stats.solves, st.solved_sites += w.stats.solved_sites;
-    st.solved_pairs += w.stats.solved_pairs;
-    st.tie_cells += w.stats.tie_cells, st.envelopes += w.stats.envelopes;
-    st.owners_evaluated += w.stats.owners_evaluated;
-    st.cells += w.stats.cells;
+    add_work(st, w.stats);
   }
   st.raw_pieces += raw.size();
   join_pieces(raw);

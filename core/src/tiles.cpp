@@ -264,10 +264,7 @@ void build_tiled(const SiteList& sites, const Box& root, const BuildOptions& opt
     if (ending.joinable()) ending.join();
     throw;
   }
-  st.boxes += ended.boxes, st.solves += ended.solves, st.solved_sites += ended.solved_sites;
-  st.solved_pairs += ended.solved_pairs, st.tie_cells += ended.tie_cells, st.envelopes += ended.envelopes;
-  st.owners_evaluated += ended.owners_evaluated;
-  st.cells += ended.cells, st.raw_pieces += ended.raw_pieces;
+  add_work(st, ended);
 }
 
 }  // namespace linf::detail
