@@ -6,20 +6,20 @@
 #include <stdexcept>
 
 #include "linf/box_tree.hpp"
+#include "outline.hpp"
 #include "parallel.hpp"
 
 namespace linf {
 namespace bp = boost::polygon;
+using detail::cross;
+using detail::oriented;
+using detail::Outlines;
 
 namespace {
 
 using BPoint = bp::point_data<int>;
 using BPolygon = bp::polygon_with_holes_data<int>;
 using BSimple = bp::polygon_data<int>;
-
-__int128 cross(const Point& o, const Point& a, const Point& b) {
-  return __int128(a.x - o.x) * (b.y - o.y) - __int128(a.y - o.y) * (b.x - o.x);
-}
 
 // Drops repeated points and vertices in the middle of a straight run.
 Ring clean_ring(const Ring& r) {
@@ -43,21 +43,6 @@ Ring clean_ring(const Ring& r) {
   return out.size() >= 3 ? out : Ring{};
 }
 
-__int128 twice_area(const Ring& r) {
-  __int128 s = 0;
-  for (std::size_t i = 0; i < r.size(); ++i) {
-    const Point& p = r[i];
-    const Point& q = r[(i + 1) % r.size()];
-    s += __int128(p.x) * q.y - __int128(q.x) * p.y;
-  }
-  return s;
-}
-
-Ring oriented(Ring r, bool ccw) {
-  if ((twice_area(r) > 0) != ccw) std::reverse(r.begin(), r.end());
-  return r;
-}
-
 BSimple to_boost(const Ring& r) {
   std::vector<BPoint> pts;
   pts.reserve(r.size());
@@ -73,14 +58,21 @@ Ring from_boost(const BSimple& s) {
   return r;
 }
 
-// One Boost.Polygon scan over the polygons ids[0, n) of `ix`, appended to `out` with the
-// least vertex of each (the sort key) in `keys`.
-void merge_group(const PolygonIndex& ix, const std::int32_t* ids, std::size_t n, PolygonArrays& out,
-                 Paged<Point>& keys) {
+// One Boost.Polygon scan over the polygons ids[0, n) of `ix` (those `alone` as they are),
+// appended to `out` with the least vertex of each (the sort key) in `keys`.
+void merge_group(const PolygonIndex& ix, const std::int32_t* ids, std::size_t n, const Outlines& outlines,
+                 const Paged<char>& alone, PolygonArrays& out, Paged<Point>& keys) {
   // Everything goes into one set and is merged by a single scan at get(): a union per shape
   // would rescan the growing set each time (minutes on a layer of 100K shapes).
   bp::polygon_set_data<int> set;
+  Polygon own;
   for (std::size_t k = 0; k < n; ++k) {
+    if (alone[std::size_t(ids[k])]) {
+      own.outer = outlines.as_merged(std::size_t(ids[k]));
+      keys.push_back(*std::min_element(own.outer.begin(), own.outer.end()));
+      out.add(own);
+      continue;
+    }
     const Polygon p = ix.polygon(std::size_t(ids[k]));
     BPolygon b;
     const BSimple outer = to_boost(p.outer);
@@ -107,11 +99,13 @@ void merge_group(const PolygonIndex& ix, const std::int32_t* ids, std::size_t n,
 }
 
 // Groups of whole clusters of polygons whose boxes overlap or touch (only those can merge),
-// each group about `size` polygons: merged group by group, a layer of millions of shapes needs
-// the scan's memory for one group at a time (one scan over five million wires held about 7 GB).
-// `ids` gets the polygons cluster by cluster, clusters in the order of their first polygon;
-// the result is where each group ends in it.
-std::vector<std::size_t> merge_groups(const PolygonIndex& ix, std::size_t size, Paged<std::int32_t>& ids) {
+// but for two plain polygons that do not meet; each group about `size` polygons: merged group
+// by group, a layer of millions of shapes needs the scan's memory for one group at a time (one
+// scan over five million wires held about 7 GB). `ids` gets the polygons cluster by cluster,
+// clusters in the order of their first polygon; the result is where each group ends in it.
+// `alone`: the plain polygons that are a cluster alone (outline.hpp).
+std::vector<std::size_t> merge_groups(const PolygonIndex& ix, const Outlines& outlines, std::size_t size,
+                                      Paged<std::int32_t>& ids, Paged<char>& alone) {
   const std::size_t n = ix.size();
   // Union-find; a root is the least polygon of its cluster, whatever the order of the joins.
   Paged<std::int32_t> parent;
@@ -125,6 +119,9 @@ std::vector<std::size_t> merge_groups(const PolygonIndex& ix, std::size_t size, 
     const BoxTree tree(n, [&](std::size_t i) { return ix.box(i); });
     for (std::size_t i = 0; i < n; ++i)
       tree.query(ix.box(i), [&](std::int32_t h) {  // closed boxes: touching counts
+        const std::size_t j = std::size_t(h);
+        if (j < i) return;  // the pair was met from j
+        if (j != i && outlines.plain(i) && outlines.plain(j) && !outlines.meet(i, j)) return;
         const std::int32_t a = root(std::int32_t(i)), b = root(h);
         if (a != b) parent[std::size_t(std::max(a, b))] = std::min(a, b);
       });
@@ -134,11 +131,13 @@ std::vector<std::size_t> merge_groups(const PolygonIndex& ix, std::size_t size, 
   Paged<std::int32_t> place;  // a cluster's size, at its root; then where its next polygon goes
   place.resize(n);
   for (std::size_t i = 0; i < n; ++i) ++place[std::size_t(parent[i])];
+  alone.resize(n);
   std::vector<std::size_t> ends;
   std::size_t at = 0, group = 0;
   for (std::size_t r = 0; r < n; ++r) {
     if (place[r] == 0) continue;
     const std::size_t c = std::size_t(place[r]);
+    alone[r] = c == 1 && outlines.plain(r);  // then r is its root
     if (group > 0 && group + c > size) ends.push_back(at), group = 0;
     place[r] = std::int32_t(at);
     at += c, group += c;
@@ -159,12 +158,14 @@ PolygonArrays merge_polygons(const FlatPolygons& in, std::size_t group, int thre
   const bool side_by_side = workers > 1 && ix.size() <= group;
   if (side_by_side) group = (ix.size() + workers - 1) / workers;
   Paged<std::int32_t> ids;
-  const std::vector<std::size_t> ends = merge_groups(ix, group, ids);
+  Paged<char> alone;
+  const Outlines outlines(ix, threads);
+  const std::vector<std::size_t> ends = merge_groups(ix, outlines, group, ids, alone);
   std::vector<PolygonArrays> merged(side_by_side ? ends.size() : 1);
   std::vector<Paged<Point>> keys(merged.size());
   auto run = [&](std::size_t g, PolygonArrays& out, Paged<Point>& k) {
     const std::size_t from = g ? ends[g - 1] : 0;
-    merge_group(ix, ids.data() + from, ends[g] - from, out, k);
+    merge_group(ix, ids.data() + from, ends[g] - from, outlines, alone, out, k);
   };
   if (side_by_side)
     detail::parallel_for(ends.size(), threads, [&](unsigned, std::size_t g) { run(g, merged[g], keys[g]); });
