@@ -250,10 +250,26 @@ struct Model {
   // test has passed (rarely, for a site that is not dominated).
   bool dominated(const Reference& r, int t) const {
     if (r.u < 0 || t == r.u) return false;
+    // Nearer than u at a corner: neither test below could pass (each compares these values),
+    // and three in four sites tested are (the SRAM: 5.08 of 6.91 million).
+    if (rectilinear(S[t]) && nearer_at_a_corner(S[t], r)) return false;
     const Side side = against(t, r.c, 4, r.fu, r.e);
     if (side == Side::Above) return true;
     if (against(g[t], r.c, 4, r.gu, r.e) != Side::Above) return false;
     return side == Side::Neither || covers(f[t], r);
+  }
+
+  // A point or an axis-parallel edge z below the reference at a corner, beyond the allowance:
+  // its L-inf distance there from its box's sides (the same doubles as its pieces give).
+  static bool nearer_at_a_corner(const Site& z, const Reference& r) {
+    const double X1 = double(std::min(z.a.x, z.b.x)), X2 = double(std::max(z.a.x, z.b.x));
+    const double Y1 = double(std::min(z.a.y, z.b.y)), Y2 = double(std::max(z.a.y, z.b.y));
+    for (int k = 0; k < 4; ++k) {
+      const Vec2& p = r.c[k];
+      const double v = std::max(std::max(p.x - X2, X1 - p.x), std::max(p.y - Y2, Y1 - p.y));
+      if (v - r.fu[k] < -r.e[k]) return true;
+    }
+    return false;
   }
 
   // Is every piece of f_u under some piece of fn at every corner, within the allowance? Both
