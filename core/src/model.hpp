@@ -171,14 +171,20 @@ struct Model {
     }
     const int across = across_of(*piece[0]);
     if (across < 0) return -1;
-    boost::container::small_vector<Extent, 8> ext;
-    for (std::size_t i = 0; i < n; ++i) ext.push_back(extent(S[g[i]], across));
-    std::sort(ext.begin(), ext.end(), [](const Extent& x, const Extent& y) { return x.lo < y.lo || (x.lo == y.lo && x.hi < y.hi); });
-    for (std::size_t i = 1; i < ext.size(); ++i)
+    // Sorted by inserting: mostly two or three (an edge and its end), where std::sort's
+    // machinery cost more than the rest of the test.
+    boost::container::small_vector<Extent, 8> ext(n, boost::container::default_init);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Extent e = extent(S[g[i]], across);
+      std::size_t j = i;
+      for (; j > 0 && (e.lo < ext[j - 1].lo || (e.lo == ext[j - 1].lo && e.hi < ext[j - 1].hi)); --j) ext[j] = ext[j - 1];
+      ext[j] = e;
+    }
+    for (std::size_t i = 1; i < n; ++i)
       if (!(ext[i] == ext[i - 1]) && ext[i].lo < ext[i - 1].hi) return -1;
     const double bp = across ? p.y : p.x, bq = across ? q.y : q.x;
     if (bp == bq) return across;  // the edge runs along the gradient: the distances across are constant
-    for (std::size_t i = 1; i < ext.size(); ++i) {
+    for (std::size_t i = 1; i < n; ++i) {
       if (ext[i] == ext[i - 1]) continue;
       const double s = (0.5 * (ext[i - 1].hi + ext[i].lo) - bp) / (bq - bp);
       if (s > 1e-12 && s < 1 - 1e-12) cuts.push_back(s);

@@ -555,7 +555,8 @@ class Builder {
           tied.push_back(C[cj]);
       std::sort(tied.begin() + 1, tied.end());  // the sites' order, as C's: near-ties decide alike
       // Only sites that also share the least slope across the edge go to the L1 tie-break.
-      const double len = std::hypot(nrm.x, nrm.y);
+      // hypot(x, 0) is |x| (C's Annex F): an axis-parallel edge's length without hypot's cost.
+      const double len = nrm.x == 0 ? std::fabs(nrm.y) : nrm.y == 0 ? std::fabs(nrm.x) : std::hypot(nrm.x, nrm.y);
       const Vec2 un{nrm.x / len, nrm.y / len};
       const double tm = m_.tol(m);
       boost::container::small_vector<const Affine*, 8> beyond(tied.size());  // each one's piece beyond m
