@@ -58,7 +58,7 @@ double area(const Cell& c) {
   double s = 0;
   for (std::size_t i = 0, n = c.v.size(); i < n; ++i) {
     const Vec2& p = c.v[i];
-    const Vec2& q = c.v[(i + 1) % n];
+    const Vec2& q = c.v[i + 1 < n ? i + 1 : 0];
     s += p.x * q.y - q.x * p.y;
   }
   return 0.5 * s;

@@ -529,7 +529,19 @@ class Builder {
       for (std::size_t j = 1; j < k; ++j) val[v * k + j] = value(up[j - 1], r.v[v]);
     }
     for (std::size_t e = 0; e < n; ++e) {
-      const Vec2 p = r.v[e], q = r.v[(e + 1) % n];
+      const std::size_t e2 = e + 1 < n ? e + 1 : 0;
+      // Within the cell every L-inf function is affine, so a site ties with t along the whole
+      // edge iff it does at both ends, and no L-inf piece changes along the edge's interior.
+      // The cell is closed, so the active pieces give every function's value at its vertices.
+      // Most edges have no site above t tied along them (t's own region goes on beyond, or a
+      // site below t reports it), and are left first.
+      const double* vp = &val[e * k];
+      const double* vq = &val[e2 * k];
+      auto ties_up = [&](std::size_t j) { return std::fabs(vp[j] - vp[0]) <= tl[e] && std::fabs(vq[j] - vq[0]) <= tl[e2]; };
+      std::size_t first_up = 1;
+      while (first_up < k && !ties_up(first_up)) ++first_up;
+      if (first_up == k) continue;
+      const Vec2 p = r.v[e], q = r.v[e2];
       if ((q.x - p.x) * (q.x - p.x) + (q.y - p.y) * (q.y - p.y) <= 1e-18) continue;  // shorter than 1e-9
       const Vec2 nrm{q.y - p.y, p.x - q.x};
       const Vec2 m{0.5 * (p.x + q.x), 0.5 * (p.y + q.y)};
@@ -540,16 +552,9 @@ class Builder {
       // sites tie in L-inf their bisector lines coincide, and the owner beyond can change
       // along the edge where the L1 tie-break changes, that is at crossings of the tied
       // sites' L1 profiles.
-      // Within the cell every L-inf function is affine, so a site ties with t along the whole
-      // edge iff it does at both ends, and no L-inf piece changes along the edge's interior.
-      // The cell is closed, so the active pieces give every function's value at its vertices.
-      const std::size_t e2 = (e + 1) % n;
-      const double* vp = &val[e * k];
-      const double* vq = &val[e2 * k];
       boost::container::small_vector<int, 8> tied{t};
-      for (std::size_t j = 1; j < k; ++j)
-        if (std::fabs(vp[j] - vp[0]) <= tl[e] && std::fabs(vq[j] - vq[0]) <= tl[e2]) tied.push_back(C[up[j - 1]]);
-      if (tied.size() == 1) continue;  // t's own region goes on beyond, or a site below t reports it
+      for (std::size_t j = first_up; j < k; ++j)
+        if (ties_up(j)) tied.push_back(C[up[j - 1]]);
       for (const std::size_t cj : down)
         if (std::fabs(value(cj, p) - vp[0]) <= tl[e] && std::fabs(value(cj, q) - vq[0]) <= tl[e2])
           tied.push_back(C[cj]);
