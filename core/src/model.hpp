@@ -268,11 +268,10 @@ struct Model {
   // A point or an axis-parallel edge z below the reference at a corner, beyond the allowance:
   // its L-inf distance there from its box's sides (the same doubles as its pieces give).
   static bool nearer_at_a_corner(const Site& z, const Reference& r) {
-    const double X1 = double(std::min(z.a.x, z.b.x)), X2 = double(std::max(z.a.x, z.b.x));
-    const double Y1 = double(std::min(z.a.y, z.b.y)), Y2 = double(std::max(z.a.y, z.b.y));
+    const Sides b = sides(z);
     for (int k = 0; k < 4; ++k) {
       const Vec2& p = r.c[k];
-      const double v = std::max(std::max(p.x - X2, X1 - p.x), std::max(p.y - Y2, Y1 - p.y));
+      const double v = std::max(std::max(p.x - b.x2, b.x1 - p.x), std::max(p.y - b.y2, b.y1 - p.y));
       if (v - r.fu[k] < -r.e[k]) return true;
     }
     return false;
@@ -320,14 +319,21 @@ struct Model {
     return below ? Side::Below : Side::Neither;
   }
 
+  // A point's or an axis-parallel edge's box, whose sides give its L-inf pieces' values.
+  struct Sides { double x1, x2, y1, y2; };
+  static Sides sides(const Site& z) {
+    return {double(std::min(z.a.x, z.b.x)), double(std::max(z.a.x, z.b.x)), double(std::min(z.a.y, z.b.y)),
+            double(std::max(z.a.y, z.b.y))};
+  }
+
   // against() for a point or an axis-parallel edge z, whose L-inf pieces are x - X2, X1 - x,
   // y - Y2 and Y1 - y over its box [X1, X2] x [Y1, Y2]: their values are differences of
   // coordinates (the same doubles as the pieces give). It runs for most candidates of every
   // box and every site of every cell.
   static Side against_rect(const Site& z, const Vec2* pts, std::size_t n, const double* ref,
                            const double* allowance) {
-    const double X1 = double(std::min(z.a.x, z.b.x)), X2 = double(std::max(z.a.x, z.b.x));
-    const double Y1 = double(std::min(z.a.y, z.b.y)), Y2 = double(std::max(z.a.y, z.b.y));
+    const Sides b = sides(z);
+    const double X1 = b.x1, X2 = b.x2, Y1 = b.y1, Y2 = b.y2;
     // As against(): a piece is given up at the first point where it is not above and some
     // point where it is below (most pieces, at their first or second point).
     bool below = true;
