@@ -6,8 +6,10 @@ namespace linf::detail {
 
 namespace {
 
-// Below this many points an outline's edges are tested pairwise, above through an index.
-constexpr std::size_t kFew = 32;
+// Up to this many points an outline's edges are tested pairwise (about 2,000 tests at most, far
+// less than the scan), above through an index of them, held while merging: 20 bytes an edge,
+// of the large polygons only.
+constexpr std::size_t kFew = 64;
 // Larger polygons go to the scan.
 constexpr std::size_t kMostPoints = std::size_t(1) << 16;
 
