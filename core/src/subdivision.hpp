@@ -537,9 +537,11 @@ class Builder {
       // site below t reports it), and are left first.
       const double* vp = &val[e * k];
       const double* vq = &val[e2 * k];
-      auto ties_up = [&](std::size_t j) { return std::fabs(vp[j] - vp[0]) <= tl[e] && std::fabs(vq[j] - vq[0]) <= tl[e2]; };
+      auto ties = [&](double at_p, double at_q) {  // a site's values at p and q against t's
+        return std::fabs(at_p - vp[0]) <= tl[e] && std::fabs(at_q - vq[0]) <= tl[e2];
+      };
       std::size_t first_up = 1;
-      while (first_up < k && !ties_up(first_up)) ++first_up;
+      while (first_up < k && !ties(vp[first_up], vq[first_up])) ++first_up;
       if (first_up == k) continue;
       const Vec2 p = r.v[e], q = r.v[e2];
       if ((q.x - p.x) * (q.x - p.x) + (q.y - p.y) * (q.y - p.y) <= 1e-18) continue;  // shorter than 1e-9
@@ -554,10 +556,9 @@ class Builder {
       // sites' L1 profiles.
       boost::container::small_vector<int, 8> tied{t};
       for (std::size_t j = first_up; j < k; ++j)
-        if (ties_up(j)) tied.push_back(C[up[j - 1]]);
+        if (ties(vp[j], vq[j])) tied.push_back(C[up[j - 1]]);
       for (const std::size_t cj : down)
-        if (std::fabs(value(cj, p) - vp[0]) <= tl[e] && std::fabs(value(cj, q) - vq[0]) <= tl[e2])
-          tied.push_back(C[cj]);
+        if (ties(value(cj, p), value(cj, q))) tied.push_back(C[cj]);
       std::sort(tied.begin() + 1, tied.end());  // the sites' order, as C's: near-ties decide alike
       // Only sites that also share the least slope across the edge go to the L1 tie-break.
       // hypot(x, 0) is |x| (C's Annex F): an axis-parallel edge's length without hypot's cost.
