@@ -1,6 +1,9 @@
-# The batch command as a person runs it: the whole `cmd=flow` (or another command) with every
-# output written, its wall time and peak memory, against the computation inside the same run
-# (diagram and gauges, from its summary.json): how much the outputs add.
+# The batch command as a person runs it: the whole `cmd=flow` (or another command) with its
+# outputs (the default ones; more with -- all_gauges=1 diagram=1 halves=1), its wall time and peak
+# memory, against the computation inside the same run (diagram and gauges, from its
+# summary.json): how much the outputs add. bench_flow_default.py compares the two.
+# Threads: both figures come from the same process, with the batch's default (-rd threads, one
+# builder thread per core unless given in k=v); the line says how many.
 #   python3 bench/bench_batch.py FILE L/D [MARKERS] [--cmd flow] [-- k=v ...]   (k=v: more -rd arguments)
 # e.g. python3 bench/bench_batch.py ../shared/data/iccad16/testcase3.oas 1000/0 ../shared/data/iccad16/test3.csv
 import json
@@ -39,6 +42,8 @@ with tempfile.TemporaryDirectory() as out:
     sec = (s.get("gauges") or s).get("seconds", {})
     compute = sum(sec.get(k, 0) for k in ("merge", "build", "check", "gauges"))
     print(p.stdout.strip())
-    print("%s on %s %s: whole command %.2f s, peak %.0f MB; of it the computation (merge, build, check, gauges) "
-          "%.2f s: the command takes %.2f x its computation" % (cmd, os.path.basename(path), layer, wall, peak,
-                                                                  compute, wall / compute if compute else 0))
+    threads = next((e.split("=", 1)[1] for e in extra if e.startswith("threads=")), "0")
+    threads = int(threads) or os.cpu_count()
+    print("%s on %s %s (%d builder threads, both sides): whole command %.2f s, peak %.0f MB; of it the computation "
+          "(merge, build, check, gauges) %.2f s: the command takes %.2f x its computation"
+          % (cmd, os.path.basename(path), layer, threads, wall, peak, compute, wall / compute if compute else 0))

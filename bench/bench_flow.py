@@ -7,8 +7,8 @@
 #                               [--tile DBU] [--deadline SECONDS] [--no-reach] [--match TEXT]
 # --match keeps the inputs whose name contains TEXT (--shared --match glp: the ten contest clips).
 # --threads adds the diagram with one thread against two (inputs up to 20,000 polygons).
-# KLayout's checks run at the gauges' own reach (see flow_one.py; the goal's comparison, README
-# "Which threshold") and at 2 x the narrowest width; --no-reach leaves the first out.
+# KLayout's checks run at the gauges' own reach (see flow_one.py; docs/benchmarks.md,
+# "Comparing with KLayout's checks") and at 2 x the narrowest width; --no-reach leaves the first out.
 import json
 import os
 import subprocess

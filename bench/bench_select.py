@@ -3,6 +3,8 @@
 #   klayout -b -r bench/bench_select.py [-rd input=FILE -rd layer=L/D -rd markers=SPEC]
 # Default: ../shared/data/iccad16/testcase3.oas 1000/0 with test3.csv and with layer 10000/0.
 # The gauges (diagram included) are computed once before and are not part of the selection time.
+# Threads: the selection runs on one thread (the core's selection has none of its own), and so do
+# KLayout's flat Region checks: equal threads, one each.
 import os
 import sys
 import time
@@ -35,13 +37,13 @@ n = fresh.width_check(t, False, pya.Region.Square).size() + fresh.space_check(t,
 t_drc = time.perf_counter() - t0
 print("input: %s %d/%d: %d polygons, %d gauges, pitch %.4g um" % (os.path.basename(path), L, D, len(polygons),
                                                                   len(r.gauges), pitch * ly.dbu))
-print("KLayout width + space checks (t = %d DBU, Square): %.3f s" % (t, t_drc))
+print("KLayout width + space checks (t = %d DBU, Square, 1 thread): %.3f s" % (t, t_drc))
 for spec in specs:
     m = marker_io.load(spec, ly, cell)
     st = selection.study(r.gauges, m.boxes, pitch)
     per = {k: v.seconds for k, v in st.runs.items()}
     a = sum(v for (mode, _), v in per.items() if mode == "A")
     c = sum(v for (mode, _), v in per.items() if mode == "C")
-    print("markers %s: %d; 12 size x mode runs %.3f s (core %.3f s) -> ratio to width + space %.2f (goal: under 1); "
-          "mode C / mode A %.2f (goal: at most 2)" % (os.path.basename(spec), len(m.boxes), st.seconds,
+    print("markers %s: %d; 12 size x mode runs (1 thread) %.3f s (core %.3f s) -> ratio to width + space %.2f (goal: under 1); "
+          "mode C / mode A %.2f (goal: at most 2)" % (os.path.basename(spec) if os.path.exists(spec) else "layer " + spec, len(m.boxes), st.seconds,
                                                      sum(per.values()), st.seconds / t_drc, c / a if a else 0))

@@ -6,7 +6,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "build"))
-import linf_opc_core  # noqa: E402
+import linf_opc_cgal  # noqa: E402  (built with the tests or -DLINF_BENCH=ON; not shipped)
 
 polygons = [(outer, holes) for outer, holes in json.load(open(sys.argv[1]))]
-print(linf_opc_core.cgal_construction_seconds(polygons, int(sys.argv[2])))
+print(linf_opc_cgal.cgal_construction_seconds(polygons, int(sys.argv[2])))

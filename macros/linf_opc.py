@@ -1,6 +1,6 @@
-# Batch entry point of the L-inf Voronoi OPC flow (see README, "Batch"):
-#   klayout -b -r macros/linf_opc.py -rd cmd=voronoi|gauges|select|split|flow -rd input=FILE -rd layer=L/D
-#           [-rd cell=NAME] -rd out=DIR ...   (arguments per command: plugin/python/linf_opc/batch.py)
+# Batch entry point of the L-inf Voronoi OPC flow (README, "Batch commands"):
+#   klayout -b -r macros/linf_opc.py -rd cmd=voronoi|gauges|select|split|flow|farthest -rd input=FILE -rd layer=L/D
+#           [-rd cell=NAME] -rd out=DIR ...   (arguments per command: plugin/python/linf_opc/commands.py)
 # Run from a checkout it uses the checkout's sources and build; otherwise the installed package.
 import os
 import sys
@@ -10,9 +10,12 @@ if os.path.isdir(os.path.join(_repo, "plugin", "python", "linf_opc")):
     sys.path.insert(0, os.path.join(_repo, "build"))
     sys.path.insert(0, os.path.join(_repo, "plugin", "python"))
 
-from linf_opc import batch  # noqa: E402
+try:
+    from linf_opc import commands, faults  # noqa: E402
+except MemoryError:  # a memory limit that leaves no room even for the package
+    sys.stderr.write("linf_opc: error: out of memory while starting: the process's memory limit (ulimit -v, "
+                     "RLIMIT_AS) is too small; nothing written\n")
+    sys.exit(2)
 
-_args = {k: globals().get(k) for k in ("cmd", "input", "layer", "cell", "out", "window", "markers", "sizes", "modes",
-                                     "mode", "size", "pitch", "halves", "max_norm", "split", "fraction", "seed",
-                                     "threshold", "bin", "box", "tile", "rdb_max")}
-sys.exit(batch.main(_args))
+# faults.run: a full disk, a read-only folder or a memory limit give one line and exit 2, not a stack.
+sys.exit(faults.run(commands.main, {k: globals().get(k) for k in commands.ARGUMENTS}))

@@ -4,7 +4,7 @@
 #include <random>
 #include <vector>
 
-#include "linf/site.hpp"
+#include "linf/geometry/site.hpp"
 
 namespace linf::testing {
 

@@ -9,16 +9,13 @@ import sys
 
 import pya
 
-repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-work = globals().get("work") or "/tmp/linf_bad_input"
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import harness  # noqa: E402
+from harness import arg, expect, finish, repo  # noqa: E402
+
+harness.report_ok = True  # the list of inputs and what each gives, read as a whole
+work = arg("work", "/tmp/linf_bad_input")
 os.makedirs(work, exist_ok=True)
-failures = []
-
-
-def expect(cond, what):
-    print(("ok:   " if cond else "FAIL: ") + what)
-    if not cond:
-        failures.append(what)
 
 
 def run(*args):
@@ -92,5 +89,4 @@ with open(markers, "w") as f:
 code, out = run("cmd=select", "input=" + layout_path, "layer=1/0", "markers=" + markers, "out=" + os.path.join(work, "m3"))
 expect(code == 2 and "columns x,y" in out, "a marker file without x,y columns: a clear error")
 
-print("bad input check %s" % ("FAILED" if failures else "passed"))
-sys.exit(1 if failures else 0)
+finish()

@@ -17,20 +17,13 @@ import sys
 
 import pya
 
-g = globals()
-repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-work = g.get("work") or "/tmp/linf_check"
-args = ["-rd", "cmd=voronoi", "-rd", "input=" + g["input"], "-rd", "layer=" + g["layer"], "-rd", "out=" + work]
-if g.get("cell"):
-    args += ["-rd", "cell=" + g["cell"]]
-failures = []
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import arg, expect, finish, repo  # noqa: E402
 
-
-def expect(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what)
-
+work = arg("work", "/tmp/linf_check")
+args = ["-rd", "cmd=voronoi", "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"), "-rd", "out=" + work]
+if arg("cell", None):
+    args += ["-rd", "cell=" + arg("cell")]
 
 run = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args,
                      capture_output=True, text=True)
@@ -54,15 +47,15 @@ expect(summary["check"]["ok"], "core checker")
 expect(counts.get("adjacent", 0) > 0, "adjacent pieces exist")
 
 # The input as KLayout sees it.
-L, D = [int(v) for v in g["layer"].split("/")]
-if g["input"].lower().endswith(".glp"):  # a contest clip: KLayout does not read GLP (check_glp.py tests the reader)
+L, D = [int(v) for v in arg("layer").split("/")]
+if arg("input").lower().endswith(".glp"):  # a contest clip: KLayout does not read GLP (check_glp.py tests the reader)
     sys.path.insert(0, os.path.join(repo, "plugin", "python"))
     from linf_opc import glp
-    src = glp.read(g["input"])
+    src = glp.read(arg("input"))
 else:
     src = pya.Layout()
-    src.read(g["input"])
-cell = src.cell(g["cell"]) if g.get("cell") else src.top_cells()[0]
+    src.read(arg("input"))
+cell = src.cell(arg("cell")) if arg("cell", None) else src.top_cells()[0]
 region = pya.Region(cell.begin_shapes_rec(src.find_layer(L, D))).merged()
 dbu = src.dbu
 expect(abs(summary["dbu"] - dbu) < 1e-12, "dbu")
@@ -125,5 +118,4 @@ for r in sample:
             bad += 1
             if bad < 5: print("no boundary at the clearance", r)
 expect(bad == 0, "%d clearance failures in %d sampled pieces" % (bad, len(sample)))
-print("checked %d rows, %d sampled ends; %s" % (len(rows), 2 * len(sample), "FAILED" if failures else "ok"))
-sys.exit(1 if failures else 0)
+finish("checked %d rows, %d sampled ends" % (len(rows), 2 * len(sample)))

@@ -1,4 +1,4 @@
-# The batch reads only the layers a command needs (batch.load): the working layer and a marker
+# The batch reads only the layers a command needs (inputs.load): the working layer and a marker
 # layer, with the same shapes as a plain read, and the same errors for layers the file lacks.
 #   klayout -b -r tests/klayout/check_batch_load.py -rd work=DIR
 import os
@@ -6,20 +6,10 @@ import sys
 
 import pya
 
-g = globals()
-repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(repo, "build"))
-sys.path.insert(0, os.path.join(repo, "plugin", "python"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import arg, expect, finish  # noqa: E402
 
-from linf_opc import batch, markers as marker_io  # noqa: E402
-
-failures = []
-
-
-def expect(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what)
+from linf_opc import inputs, markers as marker_io  # noqa: E402
 
 
 def layers(ly):
@@ -29,7 +19,7 @@ def layers(ly):
             for i in ly.layer_indexes()}
 
 
-work = g.get("work") or "/tmp/linf_batch_load"
+work = arg("work", "/tmp/linf_batch_load")
 os.makedirs(work, exist_ok=True)
 path = os.path.join(work, "layers.oas")
 ly = pya.Layout()
@@ -47,7 +37,7 @@ whole = layers(plain)
 
 for markers, want in [("100/0", {(1, 0), (100, 0)}), ("1/0", {(1, 0)}), (os.path.join(work, "hotspots.csv"), {(1, 0)}),
                       (None, {(1, 0)})]:
-    got_ly, cell, index, ld = batch.load({"input": path, "layer": "1/0", "markers": markers})
+    got_ly, cell, index, ld = inputs.load({"input": path, "layer": "1/0", "markers": markers})
     got = layers(got_ly)
     expect(set(got) == want, "markers %s: layers read %s, want %s" % (markers, sorted(got), sorted(want)))
     expect(all(got[k] == whole[k] for k in got), "markers %s: the same shapes as a plain read: %s vs %s"
@@ -55,11 +45,11 @@ for markers, want in [("100/0", {(1, 0), (100, 0)}), ("1/0", {(1, 0)}), (os.path
     expect(cell.name == "TOP" and ld == (1, 0) and got_ly.get_info(index).datatype == 0, "the cell and the layer")
 # A layer the file does not have: the same message as before, not "empty".
 try:
-    batch.load({"input": path, "layer": "5/0"})
+    inputs.load({"input": path, "layer": "5/0"})
     expect(False, "layer 5/0 is not in the file: an error")
-except batch.UsageError as e:
+except inputs.UsageError as e:
     expect("is not in" in str(e), "layer 5/0: %s" % e)
-got_ly, cell, _, _ = batch.load({"input": path, "layer": "1/0", "markers": "7/0"})
+got_ly, cell, _, _ = inputs.load({"input": path, "layer": "1/0", "markers": "7/0"})
 try:
     marker_io.load("7/0", got_ly, cell)
     expect(False, "marker layer 7/0 is not in the file: an error")
@@ -68,7 +58,4 @@ except marker_io.MarkerError as e:
 expect(marker_io.layer_of("100/0") == (100, 0) and marker_io.layer_of("x.csv") is None
        and marker_io.layer_of("a.lyrdb@um") is None and marker_io.layer_of("") is None, "marker_io.layer_of")
 
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("batch load: OK")
+finish()

@@ -1,7 +1,7 @@
-# Result layouts written by the core (output.write_by_core, for layouts of millions of shapes)
-# against the same layouts built in KLayout and saved by it: the batch's voronoi and gauges
-# commands (and select, with markers: windows.oas) run in this process twice, the second time
-# with output.COMPACT_MAX_SHAPES and polygons.SPILL_SHAPES at zero.
+# Result layouts written by the core (output.write_by_core, the batch's only writer of them)
+# against the same layouts built in KLayout and saved by it (the test oracle, oracles.py): the
+# batch's voronoi and gauges commands (and select, with markers: windows.oas) run in this
+# process with polygons.SPILL_SHAPES at zero (the layer read from its spilled arrays).
 #   klayout -b -r tests/klayout/check_core_oasis.py -rd input=FILE -rd layer=L/D [-rd cell=NAME]
 #           [-rd markers=SPEC] -rd work=DIR
 # input=rings draws its own layout first: boxes with one and two holes, and a triangle.
@@ -16,21 +16,13 @@ from collections import Counter
 
 import pya
 
-repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(repo, "build"))
-sys.path.insert(0, os.path.join(repo, "plugin", "python"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import arg, expect, finish  # noqa: E402
 
-from linf_opc import batch, output, polygons  # noqa: E402
+from linf_opc import commands, polygons  # noqa: E402
+import oracles  # noqa: E402
 
-g = globals()
-work = g.get("work") or "/tmp/linf_core_oasis"
-failures = []
-
-
-def expect(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what)
+work = arg("work", "/tmp/linf_core_oasis")
 
 
 def draw_rings(path):
@@ -47,16 +39,19 @@ def draw_rings(path):
     ly.write(path)
 
 
-if g.get("input") == "rings":
+source = arg("input")
+if source == "rings":
     os.makedirs(work, exist_ok=True)
-    g["input"], g["layer"] = os.path.join(work, "rings.oas"), "1/0"
-    draw_rings(g["input"])
+    source, layer = os.path.join(work, "rings.oas"), "1/0"
+    draw_rings(source)
+else:
+    layer = arg("layer")
 
 
 def run(out):
-    for cmd in ("voronoi", "gauges") + (("select",) if g.get("markers") else ()):
-        args = dict(cmd=cmd, input=g["input"], layer=g["layer"], cell=g.get("cell"), out=out, markers=g.get("markers"))
-        expect(batch.main(args) == 0, "%s in %s" % (cmd, out))
+    for cmd in ("voronoi", "gauges") + (("select",) if arg("markers", None) else ()):
+        args = dict(cmd=cmd, input=source, layer=layer, cell=arg("cell", None), out=out, markers=arg("markers", None))
+        expect(commands.main(args) == 0, "%s in %s" % (cmd, out))
 
 
 def content(path):
@@ -84,11 +79,10 @@ def content(path):
 
 default = os.path.join(work, "klayout")
 core = os.path.join(work, "core")
-run(default)
-output.COMPACT_MAX_SHAPES = 0
+oracles.result_layouts(dict(input=source, layer=layer, cell=arg("cell", None), markers=arg("markers", None)), default)
 polygons.SPILL_SHAPES = 0  # and the layer read from its spilled arrays, as on a large layer
 run(core)
-for name in ("voronoi.oas", "gauges.oas") + (("windows.oas",) if g.get("markers") else ()):
+for name in ("voronoi.oas", "gauges.oas") + (("windows.oas",) if arg("markers", None) else ()):
     dbu_k, cell_k, a = content(os.path.join(default, name))
     dbu_c, cell_c, b = content(os.path.join(core, name))
     expect(abs(dbu_k - dbu_c) < 1e-12 and cell_k == cell_c, "%s: dbu %r/%r, cell %s/%s" % (name, dbu_k, dbu_c, cell_k, cell_c))
@@ -105,5 +99,4 @@ for name in ("voronoi.oas", "gauges.oas") + (("windows.oas",) if g.get("markers"
     expect(shapes > 0, "%s: shapes written" % name)
     print("%s: %d layers, %d shapes, the same from KLayout and from the core" % (name, len(b), shapes))
 
-print("core oasis check %s" % ("FAILED" if failures else "passed"))
-sys.exit(1 if failures else 0)
+finish()

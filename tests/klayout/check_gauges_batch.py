@@ -1,8 +1,11 @@
 # Runs the batch macro's gauges command on one layout and checks its outputs:
 #   klayout -b -r tests/klayout/check_gauges_batch.py -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd work=DIR
 # - gauges.csv: exact header; ranks 1..n in order; scores never decrease with rank; norm_score
-#   = score / the highest; the line's ends are cd apart along the axis it measures (axis-parallel
-#   lines); counts per type as in summary.json; every type present on the sample;
+#   = score / the highest; an axis-parallel line's ends lie on either side of the gauge point
+#   along its axis, the farther cd/2 from it, the nearer at most that (cd apart unless the
+#   features touch the gauge's square on two adjacent sides); every line is horizontal or
+#   vertical but between two slanted edges (none of them within the gauge's reach); counts per
+#   type as in summary.json; every type present on the sample;
 # - gauges.lyrdb: loads in KLayout, one category per type, one item per row, each with an edge
 #   and the named values;
 # - gauges.oas: a line and a rank text per gauge on L/210;
@@ -16,23 +19,17 @@ import sys
 
 import pya
 
-g = globals()
-repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-work = g.get("work") or "/tmp/linf_gauges_check"
-failures = []
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import arg, expect, finish, repo  # noqa: E402
+
+work = arg("work", "/tmp/linf_gauges_check")
 TYPES = ["internal", "external", "sandwich", "comb", "T"]
 
 
-def expect(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what)
-
-
 def run(out, extra=()):
-    args = ["-rd", "cmd=gauges", "-rd", "input=" + g["input"], "-rd", "layer=" + g["layer"], "-rd", "out=" + out]
-    if g.get("cell"):
-        args += ["-rd", "cell=" + g["cell"]]
+    args = ["-rd", "cmd=gauges", "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"), "-rd", "out=" + out]
+    if arg("cell", None):
+        args += ["-rd", "cell=" + arg("cell")]
     r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args + list(extra),
                        capture_output=True, text=True)
     print(r.stdout.strip())
@@ -44,6 +41,24 @@ def run(out, extra=()):
     return rows, json.load(open(os.path.join(out, "summary.json")))
 
 
+def slanted_edges():
+    """The slanted edges of the layer (merged), in micrometres."""
+    ly = pya.Layout()
+    ly.read(arg("input"))
+    top = ly.cell(arg("cell")) if arg("cell", None) else ly.top_cells()[0]
+    L, D = (int(v) for v in arg("layer").split("/"))
+    region = pya.Region(top.begin_shapes_rec(ly.layer(L, D))).merged()
+    return [(e.p1.x * ly.dbu, e.p1.y * ly.dbu, e.p2.x * ly.dbu, e.p2.y * ly.dbu)
+            for e in region.edges().each() if e.p1.x != e.p2.x and e.p1.y != e.p2.y], ly.dbu
+
+
+def euclid_to_segment(x, y, e):
+    dx, dy = e[2] - e[0], e[3] - e[1]
+    t = max(0.0, min(1.0, ((x - e[0]) * dx + (y - e[1]) * dy) / (dx * dx + dy * dy)))
+    return ((x - e[0] - t * dx) ** 2 + (y - e[1] - t * dy) ** 2) ** 0.5
+
+
+slanted, dbu = slanted_edges()
 rows, summary = run(work)
 expect(rows[0] == "id,type,x1,y1,x2,y2,cx,cy,cd,score,norm_score,tiebreak,rank".split(","), "csv header")
 rows = rows[1:]
@@ -51,6 +66,7 @@ expect(len(rows) == summary["gauges"] > 0, "rows %d vs summary %d" % (len(rows),
 counts = dict.fromkeys(TYPES, 0)
 top = max(float(r[9]) for r in rows)
 last = -1.0
+shorter, tilted = 0, []
 for i, r in enumerate(rows):
     t = r[1]
     x1, y1, x2, y2, cx, cy, cd, score, norm, tie = (float(v) for v in r[2:12])
@@ -60,10 +76,17 @@ for i, r in enumerate(rows):
     last = score
     expect(abs(norm - score / top) < 1e-5, "norm_score at rank %d" % (i + 1))
     if x1 == x2 or y1 == y2:
-        expect(abs(max(abs(x2 - x1), abs(y2 - y1)) - cd) < 2e-6,
-               "rank %d: line length %g vs cd %g" % (i + 1, max(abs(x2 - x1), abs(y2 - y1)), cd))
+        d1, d2 = (x1 - cx, x2 - cx) if y1 == y2 else (y1 - cy, y2 - cy)
+        far, near = max(abs(d1), abs(d2)), min(abs(d1), abs(d2))
+        expect(d1 * d2 <= 0 and abs(far - cd / 2) < 2e-6 and near <= cd / 2 + 2e-6,
+               "rank %d: line ends %g and %g from the gauge point along its axis, cd %g" % (i + 1, d1, d2, cd))
+        shorter += abs(d2 - d1) < cd - 2e-6
+    elif not any(euclid_to_segment(cx, cy, e) <= (cd / 2 + dbu) * 2 ** 0.5 for e in slanted):
+        tilted.append(i + 1)
+expect(not tilted, "%d lines neither horizontal nor vertical away from slanted edges (ranks %s)" % (len(tilted), tilted[:5]))
+expect(shorter <= len(rows) // 5, "%d of %d lines shorter than cd" % (shorter, len(rows)))
 expect(counts == summary["counts"], "counts %s vs summary %s" % (counts, summary["counts"]))
-if os.path.basename(g["input"]) == "metal.oas":
+if os.path.basename(arg("input")) == "metal.oas":
     expect(all(counts[t] > 0 for t in TYPES), "every gauge type on the sample: %s" % counts)
 
 rdb = pya.ReportDatabase("check")
@@ -77,16 +100,19 @@ expect(any(v.is_edge() for v in first.each_value()), "an item holds its measurem
 
 ly = pya.Layout()
 ly.read(os.path.join(work, "gauges.oas"))
-L = int(g["layer"].split("/")[0])
+L = int(arg("layer").split("/")[0])
 li = ly.find_layer(L, 210)
 shapes = list(ly.top_cells()[0].shapes(li).each()) if li is not None else []
 texts = sorted(s.text_string for s in shapes if s.is_text())
-lines = sum(1 for s in shapes if s.is_path())
+lines = [tuple((q.x, q.y) for q in s.path.each_point()) for s in shapes if s.is_path()]
 expect(sorted(t.rsplit(" ", 1)[0] for t in texts) == sorted("#%s %s" % (r[12], r[1]) for r in rows),
        "gauge layer: %d rank texts '#rank type cd' for %d gauges" % (len(texts), len(rows)))
-# Sandwich, comb and T gauges measure the same line as an internal gauge: the file keeps one.
+# Sandwich, comb and T gauges measure the same line as an internal gauge: the core's file keeps
+# a line a gauge, KLayout's kept one of each.
 distinct = len(set((r[2], r[3], r[4], r[5]) for r in rows))
-expect(lines == distinct, "gauge layer: %d lines for %d distinct measurement lines" % (lines, distinct))
+expect(len(lines) == len(rows) and len(set(lines)) == distinct,
+       "gauge layer: %d lines (%d distinct) for %d gauges (%d distinct measurement lines)"
+       % (len(lines), len(set(lines)), len(rows), distinct))
 
 # Per-pattern mode on the middle of the layer's extent.
 xs = [float(r[6]) for r in rows]
@@ -103,5 +129,4 @@ expect(len(prow) == len(best) > 0, "per-pattern: %d gauges for %d types in the w
 for r in prow:
     expect(r[1] in best and r[2:10] == best[r[1]][2:10], "per-pattern %s is the best of its type" % r[1])
 
-print("gauges batch check %s: %d gauges %s" % ("FAILED" if failures else "passed", len(rows), counts))
-sys.exit(1 if failures else 0)
+finish("%d gauges %s" % (len(rows), counts))

@@ -1,8 +1,11 @@
 # Proof of the gauges against KLayout's own DRC (README, "Gauges", "Proof against DRC").
 #   klayout -b -r tests/klayout/check_gauges_drc.py -rd input=FILE -rd layer=L/D [-rd cell=NAME]
-#           [-rd factors=1.0,1.5,2.0]
-# For thresholds t = factor x (the narrowest width or space of the layer) + 1 DBU, with metrics
-# Square (L-inf), whole edges, KLayout's default shielding and ignore_angle 90:
+#           [-rd factors=1.5,2.0,3.0]
+# The layer's narrowest width (space) is KLayout's own: the least L-inf distance of the
+# width_check (space_check) edge pairs whose two edges are axis-parallel, the check's threshold
+# doubled from 1 DBU until it flags such a pair (the gauges play no part in the thresholds).
+# For thresholds t = factor x that width (space) + 1 DBU, with metrics Square (L-inf), whole
+# edges, KLayout's default shielding and ignore_angle 90:
 #  recall:    every width_check edge pair is explained by an internal gauge on the same two
 #             boundary features with cd <= distance + 1 DBU (a vertex stands for its two edges);
 #             where the distance is attained at the edges' end corners (kissing corners, offset
@@ -19,14 +22,14 @@
 # 45-degree and other slanted edges: KLayout's Square metric measures in the edge's own frame
 # (a rotated square), the diagram in the axis frame; DRC pairs and gauges that involve a slanted
 # edge are counted and printed but left out of the 100% claim.
-# Prints recall and precision per threshold; exits non-zero unless all are 100%.
+# Prints recall and precision per threshold; exits non-zero unless all are 100%, and where a
+# factor compares no pair (no DRC pair of axis-parallel edges for both width and space).
 import math
 import os
 import sys
 
-_repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(_repo, "build"))
-sys.path.insert(0, os.path.join(_repo, "plugin", "python"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import arg, expect, finish  # noqa: E402
 
 import pya  # noqa: E402
 
@@ -230,10 +233,26 @@ def drc_pairs(edge_pairs):
     return out
 
 
+def least_axis_parallel(check, reach):
+    """The least L-inf distance of the DRC edge pairs between two axis-parallel edges that
+    `check(t)` flags (distance < t): t is doubled from 1 DBU until some such pair is flagged, so
+    that the least is found without flagging every pair of the layer. None where none is
+    flagged up to `reach`."""
+    t = 1
+    while True:
+        near = [d for e, f, d in drc_pairs(check(t)) if not slanted(e) and not slanted(f)]
+        if near:
+            return min(near)
+        if t > reach:
+            return None
+        t *= 2
+
+
 def main():
+    path, layer = arg("input"), arg("layer")
     ly = pya.Layout()
-    ly.read(input)
-    cell = ly.cell(globals().get("cell")) if globals().get("cell") else ly.top_cells()[0]
+    ly.read(path)
+    cell = ly.cell(arg("cell")) if arg("cell", None) else ly.top_cells()[0]
     l, d = (int(v) for v in layer.split("/"))
     drawn = layer_io.region_of(cell, ly.find_layer(l, d))
     # The gauges from the shapes as drawn (the core merges them, as in the flow); the features
@@ -251,22 +270,34 @@ def main():
                 edges_at.setdefault(q, set()).add(k)
     internal = [g for g in result.gauges if g.type == "internal"]
     external = [g for g in result.gauges if g.type == "external"]
-    w0 = min((g.cd for g in internal), default=0)
-    s0 = min((g.cd for g in external), default=0)
-    factors = [float(v) for v in (globals().get("factors") or "1.0,1.5,2.0").split(",")]
-    print("%s %s: %d polygons, %d gauges (internal %d, external %d); narrowest width %g, space %g DBU"
-          % (os.path.basename(input), layer, len(polygons), len(result.gauges), len(internal), len(external),
-             w0, s0))
+    box = region.bbox()
+    reach = max(box.width(), box.height()) + 1
+    w0 = least_axis_parallel(lambda t: region.width_check(t, True, pya.Region.Square), reach)
+    s0 = least_axis_parallel(lambda t: region.space_check(t, True, pya.Region.Square), reach)
+    factors = [float(v) for v in arg("factors", "1.5,2.0,3.0").split(",")]
+    print("%s %s: %d polygons, %d gauges (internal %d, external %d); KLayout's narrowest axis-parallel width %s, "
+          "space %s DBU (gauges' narrowest: width %g, space %g)"
+          % (os.path.basename(path), layer, len(polygons), len(result.gauges), len(internal), len(external),
+             w0, s0, min((g.cd for g in internal), default=0), min((g.cd for g in external), default=0)))
+    expect(w0 is not None or s0 is not None, "KLayout finds an axis-parallel width or space on the layer")
     failures = 0
     for k in factors:
-        tw = math.floor(k * w0) + 1
-        ts = math.floor(k * s0) + 1
-        width = drc_pairs(region.width_check(tw, True, pya.Region.Square))
-        space = drc_pairs(region.space_check(ts, True, pya.Region.Square))
-        failures += compare("width", width, internal, edges_at, tw, Grid([g for g in internal if g.cd <= tw + 1], max(tw, 1) * 4))
-        failures += compare("space", space, external, edges_at, ts, Grid([g for g in external if g.cd <= ts + 1], max(ts, 1) * 4))
-    print("FAILED: %d" % failures if failures else "OK")
-    return 1 if failures else 0
+        compared = 0
+        if w0 is not None:
+            tw = math.floor(k * w0) + 1
+            width = drc_pairs(region.width_check(tw, True, pya.Region.Square))
+            compared += sum(1 for e, f, d in width if not slanted(e) and not slanted(f))
+            failures += compare("width", width, internal, edges_at, tw,
+                                Grid([g for g in internal if g.cd <= tw + 1], max(tw, 1) * 4))
+        if s0 is not None:
+            ts = math.floor(k * s0) + 1
+            space = drc_pairs(region.space_check(ts, True, pya.Region.Square))
+            compared += sum(1 for e, f, d in space if not slanted(e) and not slanted(f))
+            failures += compare("space", space, external, edges_at, ts,
+                                Grid([g for g in external if g.cd <= ts + 1], max(ts, 1) * 4))
+        expect(compared > 0, "factor %g compares %d DRC pairs of axis-parallel edges" % (k, compared))
+    expect(failures == 0, "%d DRC pairs unexplained or gauges off a DRC pair (above)" % failures)
 
 
-sys.exit(main())
+main()
+finish()

@@ -1,4 +1,4 @@
-# The two-layouts experiment (Table 5.9, batch.halves_similarity) against a plain reading of it:
+# The two-layouts experiment (Table 5.9, halves.halves_similarity) against a plain reading of it:
 #   klayout -b -r tests/klayout/check_halves.py -rd input=FILE -rd layer=L/D -rd markers=SPEC -rd work=DIR
 # The batch reads both halves in one pass, clipping only the polygons across the cut, spills
 # them when large, and classifies the used gauges from the table's columns. Here both halves
@@ -12,20 +12,10 @@ import sys
 
 import pya
 
-g = globals()
-repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(repo, "build"))
-sys.path.insert(0, os.path.join(repo, "plugin", "python"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import arg, expect, finish  # noqa: E402
 
-from linf_opc import batch, gauges, layout, markers as marker_io, polygons, selection  # noqa: E402
-
-failures = []
-
-
-def expect(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what)
+from linf_opc import gauges, halves, inputs, layout, markers as marker_io, polygons, selection  # noqa: E402
 
 
 def plain(region, markers, pitch, size):
@@ -47,10 +37,10 @@ def plain(region, markers, pitch, size):
     return c1, c2, selection.similarity(c1, c2)
 
 
-os.makedirs(g["work"], exist_ok=True)
-args = {"input": g["input"], "layer": g["layer"], "out": g["work"], "markers": g["markers"]}
-inp = batch.Input.from_args(args)
-ms = marker_io.load(g["markers"], inp.ly, inp.cell).boxes
+os.makedirs(arg("work"), exist_ok=True)
+args = {"input": arg("input"), "layer": arg("layer"), "out": arg("work"), "markers": arg("markers")}
+inp = inputs.Input.from_args(args)
+ms = marker_io.load(arg("markers"), inp.ly, inp.cell).boxes
 pitch = selection.pitch_of(gauges.compute(inp.polygons).gauges)
 size = 7
 c1, c2, s12 = plain(layout.region_of(inp.cell, inp.index), ms, pitch, size)
@@ -65,8 +55,8 @@ print("%d polygons across the cut" % crossing)
 for large in (False, True):
     if large:
         layout.MERGE_IN_KLAYOUT_MAX = polygons.SPILL_SHAPES = 0
-    inp = batch.Input.from_args(args)
-    got = batch.halves_similarity(inp, ms, pitch, size)
+    inp = inputs.Input.from_args(args)
+    got = halves.halves_similarity(inp, ms, pitch, size)
     inp.out.abort()
     n1 = {(t, s): n for t, s, n in c1}
     n2 = {(t, s): n for t, s, n in c2}
@@ -79,7 +69,4 @@ for large in (False, True):
     expect(0 < got["S_12"] <= 100, "S_12 %s in (0, 100]" % got["S_12"])
     print("large %s: %d classes, N_t %d + %d, S_12 %.4f" % (large, len(got["classes"]), got["N_t1"], got["N_t2"],
                                                             got["S_12"]))
-if failures:
-    print("%d failure(s)" % len(failures))
-    sys.exit(1)
-print("halves: OK")
+finish()

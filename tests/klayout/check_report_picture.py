@@ -15,22 +15,14 @@ import struct
 import sys
 import zlib
 
-repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(repo, "build"))
-sys.path.insert(0, os.path.join(repo, "plugin", "python"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import arg, expect, finish, repo  # noqa: E402
 
 import pya  # noqa: E402
 
-from linf_opc import batch, layout, picture, report  # noqa: E402
+from linf_opc import commands, layout, picture, report  # noqa: E402
 
-work = globals().get("work") or "/tmp/linf_report_picture"
-failures = []
-
-
-def expect(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what)
+work = arg("work", "/tmp/linf_report_picture")
 
 
 def pixels(png):
@@ -69,8 +61,8 @@ def pixels(png):
 
 
 report.SVG_PICTURE_MAX = 0
-rc = batch.main(dict(cmd="select", input=os.path.join(repo, "samples", "metal.oas"), layer="1/0", markers="100/0",
-                     halves="0", out=work))
+rc = commands.main(dict(cmd="select", input=os.path.join(repo, "samples", "metal.oas"), layer="1/0", markers="100/0",
+                        halves="0", out=work))
 expect(rc == 0, "select exit code %s" % rc)
 page = open(os.path.join(work, "report.html")).read()
 uris = re.findall(r'src="([^"]*)"', page)
@@ -103,5 +95,4 @@ for across in (12, 60, 4000):
     expect(all(p in polygons for p in large), "%d cells across: the large shapes as they are" % across)
     print("%d cells across: %d shapes drawn for %d (%d large)" % (across, drawn.count(), region.count(), len(large)))
 
-print("report picture check %s" % ("FAILED" if failures else "passed"))
-sys.exit(1 if failures else 0)
+finish()

@@ -1,4 +1,5 @@
-# Runs the batch macro's split command twice on one layout and checks the split:
+# Runs the batch macro's split command twice on one layout and checks the split of the modes
+# stratified (this script's default) and threshold; the plan, the command's default: check_plan.py.
 #   klayout -b -r tests/klayout/check_split_batch.py -rd input=FILE -rd layer=L/D -rd markers=SPEC
 #           [-rd split=stratified|threshold] [-rd cell=NAME] -rd work=DIR
 # - invariants: the two sets are disjoint and together are the patterns of split.json; every
@@ -18,24 +19,18 @@ import sys
 
 import pya
 
-g = globals()
-repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-work = g.get("work") or "/tmp/linf_split_check"
-mode = g.get("split") or "stratified"
-failures = []
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import arg, expect, finish, repo  # noqa: E402
 
-
-def expect(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what)
+work = arg("work", "/tmp/linf_split_check")
+mode = arg("split", "stratified")
 
 
 def run(out):
-    args = ["-rd", "cmd=split", "-rd", "input=" + g["input"], "-rd", "layer=" + g["layer"], "-rd", "out=" + out,
-            "-rd", "markers=" + g["markers"], "-rd", "split=" + mode, "-rd", "halves=0"]
-    if g.get("cell"):
-        args += ["-rd", "cell=" + g["cell"]]
+    args = ["-rd", "cmd=split", "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"), "-rd", "out=" + out,
+            "-rd", "markers=" + arg("markers"), "-rd", "split=" + mode, "-rd", "halves=0"]
+    if arg("cell", None):
+        args += ["-rd", "cell=" + arg("cell")]
     r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args,
                        capture_output=True, text=True)
     print(r.stdout.strip())
@@ -82,9 +77,9 @@ else:
 
 # Clips against KLayout's own layer & window.
 ly = pya.Layout()
-ly.read(g["input"])
-cell = ly.cell(g["cell"]) if g.get("cell") else ly.top_cells()[0]
-L, D = (int(v) for v in g["layer"].split("/"))
+ly.read(arg("input"))
+cell = ly.cell(arg("cell")) if arg("cell", None) else ly.top_cells()[0]
+L, D = (int(v) for v in arg("layer").split("/"))
 layer = pya.Region(cell.begin_shapes_rec(ly.find_layer(L, D)))
 layer.merged_semantics = True
 checked = 0
@@ -123,6 +118,4 @@ for item in rdb.each_item():
                 tagged[t] += 1
 expect(tagged == s["counts"], "report database tags %s vs %s" % (tagged, s["counts"]))
 
-print("split batch check %s: %s, calibration %d, verification %d, %d clips XOR-checked"
-      % ("FAILED" if failures else "passed", s["mode"], len(cal), len(ver), checked))
-sys.exit(1 if failures else 0)
+finish("%s, calibration %d, verification %d, %d clips XOR-checked" % (s["mode"], len(cal), len(ver), checked))

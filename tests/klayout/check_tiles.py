@@ -1,5 +1,6 @@
 # The flow cut into tiles gives the flow in one piece: for several tile sizes, the batch macro's
-# cmd=flow writes the same voronoi.csv, gauges.csv, windows.csv and split lists, byte for byte.
+# cmd=flow writes the same voronoi.csv, gauges.csv (both on request: diagram=1, all_gauges=1),
+# windows.csv and split lists, byte for byte.
 #   klayout -b -r tests/klayout/check_tiles.py -rd input=FILE -rd layer=L/D -rd markers=SPEC [-rd cell=NAME]
 #           -rd work=DIR [-rd parts=1.5,3,20]
 # Tile sizes are the layer's extent divided by each of `parts`; summary.json must show that the
@@ -12,24 +13,19 @@ import sys
 
 import pya
 
-g = globals()
-repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-work = g.get("work") or "/tmp/linf_tiles_check"
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import arg, expect, finish, repo  # noqa: E402
+
+work = arg("work", "/tmp/linf_tiles_check")
 FILES = ["voronoi.csv", "gauges.csv", "windows.csv", "calibration_gauges.csv", "verification_gauges.csv"]
-failures = []
-
-
-def expect(cond, what):
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what)
 
 
 def flow(tile, out):
-    args = ["-rd", "cmd=flow", "-rd", "input=" + g["input"], "-rd", "layer=" + g["layer"], "-rd",
-            "markers=" + g["markers"], "-rd", "out=" + out, "-rd", "tile=" + tile]
-    if g.get("cell"):
-        args += ["-rd", "cell=" + g["cell"]]
+    args = ["-rd", "cmd=flow", "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"), "-rd",
+            "markers=" + arg("markers"), "-rd", "out=" + out, "-rd", "tile=" + tile,
+            "-rd", "all_gauges=1", "-rd", "diagram=1"]
+    if arg("cell", None):
+        args += ["-rd", "cell=" + arg("cell")]
     r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args,
                        capture_output=True, text=True)
     print("tile=%s: %s" % (tile, r.stdout.strip() or r.stderr.strip()))
@@ -39,15 +35,15 @@ def flow(tile, out):
 
 
 ly = pya.Layout()
-ly.read(g["input"])
-top = ly.cell(g["cell"]) if g.get("cell") else ly.top_cells()[0]
-L, D = (int(v) for v in g["layer"].split("/"))
+ly.read(arg("input"))
+top = ly.cell(arg("cell")) if arg("cell", None) else ly.top_cells()[0]
+L, D = (int(v) for v in arg("layer").split("/"))
 box = top.dbbox_per_layer(ly.find_layer(L, D))
 extent = max(box.width(), box.height())
 
 ref = flow("0", os.path.join(work, "whole"))
 expect(ref["tiles"]["tiles"] == 1, "tile=0 builds one tile")
-for parts in (float(v) for v in (g.get("parts") or "1.5,3,20").split(",")):
+for parts in (float(v) for v in arg("parts", "1.5,3,20").split(",")):
     tile = "%.4f" % (extent / parts)
     out = os.path.join(work, "tile_%g" % parts)
     s = flow(tile, out)
@@ -59,5 +55,4 @@ for parts in (float(v) for v in (g.get("parts") or "1.5,3,20").split(",")):
         same = filecmp.cmp(os.path.join(work, "whole", name), os.path.join(out, name), shallow=False)
         expect(same, "%s with tile=%s um differs from the untiled run" % (name, tile))
 
-print("tiles check on %s %s: %s" % (os.path.basename(g["input"]), g["layer"], "FAILED" if failures else "ok"))
-sys.exit(1 if failures else 0)
+finish("on %s %s" % (os.path.basename(arg("input")), arg("layer")))

@@ -4,79 +4,25 @@
 # Loads the layout, selects the layer, triggers Tools > L-inf Voronoi OPC > Voronoi diagram of
 # current layer through the menu, asserts the diagram layers and undo, saves a screenshot.
 import os
+import sys
 
 import pya
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gui_harness import Gui, select_layer  # noqa: E402
+
 g = globals()
-app = pya.Application.instance()
-mw = app.main_window()
-failures = []
-# In GUI mode print() goes to KLayout's console, so the test writes its own log.
-log = open(g.get("log") or "/dev/stderr", "w")
-
-
-def say(text):
-    log.write(text + "\n")
-    log.flush()
-
-
-def expect(cond, what):
-    say(("ok:   " if cond else "FAIL: ") + what)
-    if not cond:
-        failures.append(what)
-
-
-def finish():
-    say("gui test %s" % ("FAILED" if failures else "passed"))
-    app.exit(1 if failures else 0)
-
-
-expected_dialog = []  # titles of dialogs a step opens on purpose (a step fills them in)
-captured = []         # message boxes a step expects: their texts, then closed
-capture_titles = []
-
-
-def dialog_texts(w):
-    texts, todo = [], list(w.children())
-    while todo:
-        c = todo.pop()
-        todo.extend(c.children())
-        if "Label" in type(c).__name__ and c.text:
-            texts.append(c.text)
-    return texts
-
-
-def close_modal():
-    """A modal dialog during the test is a failure, never a hang (unless a step expects it)."""
-    w = pya.QApplication.activeModalWidget()
-    if w is None or any(w.windowTitle.startswith(t) for t in expected_dialog):
-        return
-    if any(w.windowTitle.startswith(t) for t in capture_titles):
-        captured.append(" / ".join(dialog_texts(w)))
-        w.close()
-        return
-    expect(False, "a modal dialog came up: %s: %s" % (w.windowTitle, " / ".join(dialog_texts(w))))
-    w.close()
-
-
-watchdog = pya.QTimer()
-watchdog.interval = 1000
-watchdog.timeout = close_modal
-watchdog.start()
+gui = Gui(g)
+app, mw, failures, timers = gui.app, gui.mw, gui.failures, gui.timers
+say, expect, finish, later = gui.say, gui.expect, gui.finish, gui.later
+expected_dialog, captured, capture_titles = gui.expected_dialog, gui.captured, gui.capture_titles
 
 L, D = [int(v) for v in g["layer"].split("/")]
 g.setdefault("markers", "100/0")
 
 
 def load():
-    """Once the event loop is up: load the layout; the layer list fills in from the loop."""
-    try:
-        mw.load_layout(g["input"], 0)
-    except Exception as e:
-        expect(False, "exception: %s" % e)
-        finish()
-        return
-    later(1500, run_test)
+    gui.load(g["input"], run_test)
 
 
 def run_test():
@@ -97,12 +43,17 @@ def run_test():
             counts[kind] = cell.shapes(li).size() if li is not None else 0
         say("diagram shapes per kind: %s" % counts)
         expect(all(counts[k] > 0 for k in ("internal", "external", "adjacent")), "diagram layers filled")
+        layer_box = cell.bbox_per_layer(ly.find_layer(L, D))
+        boxes = [cell.bbox_per_layer(ly.find_layer(L, 200 + i)) for i in range(4)]
+        expect(all(layer_box.contains(b.p1) and layer_box.contains(b.p2) for b in boxes),
+               "the diagram ends at the layer's box %s (rays cut): %s" % (layer_box, [b.to_s() for b in boxes]))
         shown = set()
         it = view.begin_layers()
         while not it.at_end():
             shown.add(it.current().layer_index())
             it.next()
         expect(ly.find_layer(L, 200) in shown and ly.find_layer(L, 203) in shown, "diagram layers in the layer list")
+        check_group(view, "the diagram")
         view.max_hier_levels = 99
         view.zoom_fit()
         state.update(view=view, ly=ly, cell=cell, action=action, counts=counts)
@@ -113,31 +64,37 @@ def run_test():
     finish()
 
 
-timers = []
-
-
-def later(ms, f):
-    t = pya.QTimer()
-    t.singleShot = True
-    t.interval = ms
-    t.timeout = f
-    t.start()
-    timers.append(t)
+def check_group(view, when):
+    """The plugin's layers: one group node "L∞ OPC (L/D)", each kind its own colour with a
+    hollow fill, adjacent hidden."""
+    groups, children = 0, []
+    it = view.begin_layers()
+    while not it.at_end():
+        node = it.current()
+        if node.name == "L\u221e OPC (%d/%d)" % (L, D):
+            groups += 1
+            child = it.dup()
+            child.down_first_child()
+            while not child.at_end():
+                c = child.current()
+                children.append((c.source_datatype, c.fill_color, c.dither_pattern, c.visible))
+                child.next_sibling(1)
+        it.next_sibling(1)
+    say("%s: group %d, children %s" % (when, groups, children))
+    colours = [c[1] for c in children]
+    expect(groups == 1 and len(children) >= 4 and len(set(colours)) == len(colours)
+           and all(c[2] == 1 for c in children), "%s: one group node, a colour a layer, hollow fills" % when)
+    expect([c[3] for c in children if c[0] in (203, 215)] == [False] * len([c for c in children if c[0] in (203, 215)])
+           and all(c[3] for c in children if c[0] not in (203, 215)),
+           "%s: adjacent (and gauge labels) hidden, the rest shown" % when)
 
 
 state = {}
 
 
-def select(view, ly):
-    """Selects the input layer in the layer list, as the user does by clicking it."""
-    target = ly.find_layer(L, D)
-    it = view.begin_layers()
-    while not it.at_end():
-        if it.current().layer_index() == target:
-            view.current_layer = it
-            return True
-        it.next()
-    return False
+def select(view, ly, datatype=D):
+    """Selects the input layer (or L/datatype) in the layer list, as the user does by clicking it."""
+    return select_layer(view, ly, L, datatype)
 
 
 def second_step():
@@ -157,6 +114,7 @@ def second_step():
             state["action"].trigger()
             n = cell.shapes(ly.find_layer(L, 203)).size()
             expect(n == state["counts"]["adjacent"], "a second run replaces the diagram (%d adjacent)" % n)
+            check_group(view, "a second run")
         later(500, gauges_step)
         return
     except Exception as e:
@@ -174,15 +132,45 @@ def gauges_step():
         expect(mw.menu().is_valid("tools_menu.linf_opc.gauges"), "gauges menu entry registered")
         rdbs = view.num_rdbs()
         action.trigger()
-        li = ly.find_layer(L, 210)
-        n = cell.shapes(li).size() if li is not None else 0
-        expect(n > 0 and n % 2 == 0, "gauge layer filled: %d shapes (a line and a text per gauge)" % n)
+        import re
+        import linf_opc.menu as menu
+        total, groups, drawn = menu.gauges_of_current_layer.last
+        lines = {dt: cell.shapes(ly.find_layer(L, dt)).size() if ly.find_layer(L, dt) is not None else 0
+                 for dt in range(210, 215)}
+        li = ly.find_layer(L, 215)
+        labels = [s.text_string for s in cell.shapes(li).each()] if li is not None else []
+        n = sum(lines.values())
+        say("gauges %d in %d contexts; drawn per type %s; labels e.g. %s" % (total, groups, lines, labels[:3]))
+        expect(0 < n == drawn == min(1000, groups) and len(labels) == n and all(v > 0 for v in lines.values()),
+               "the representatives drawn, each type on its layer, a label each: %d of %d gauges" % (n, total))
+        form = re.compile(r"^(W|S|SW|C|T) [\d.e+]+ nm \u00d7([\d,]+)$")
+        counts = [form.match(t) for t in labels]
+        expect(all(counts), "labels read 'W 16 nm \u00d72,400': %s" % [t for t, m in zip(labels, counts) if not m][:3])
+        if groups <= 1000 and all(counts):
+            expect(sum(int(m.group(2).replace(",", "")) for m in counts) == total,
+                   "the labels' counts add up to the layer's %d gauges" % total)
         expect(view.num_rdbs() == rdbs + 1, "a report database was added to the view")
         rdb = view.rdb(view.num_rdbs() - 1)
         cats = {c.name(): c.num_items() for c in rdb.each_category()}
         say("marker browser categories: %s" % cats)
-        expect(set(cats) == {"internal", "external", "sandwich", "comb", "T"} and sum(cats.values()) == n // 2,
-               "one category per gauge type, one item per gauge")
+        expect(set(cats) == {"internal", "external", "sandwich", "comb", "T"} and sum(cats.values()) == drawn,
+               "one category per gauge type, one item per drawn gauge")
+        tags = {}
+        for item in rdb.each_item():
+            for v in item.each_value():
+                if v.tag_id:
+                    tags.setdefault(rdb.tag_name(v.tag_id), []).append(v.string() if v.is_string() else v.to_s())
+        say("marker browser values, e.g. %s" % {k: v[:2] for k, v in tags.items()})
+        forms = {"rank": r"^\d+$", "cd": r"^\d+(\.\d+)? nm$", "score": r"^\d+(\.\d+)? nm$",
+                 "count": r"^\d{1,3}(,\d{3})* \([\d.e+-]+% of the layer's gauges\)$"}
+        expect(set(tags) == set(forms) and all(len(tags[k]) == drawn and all(re.match(forms[k], t) for t in tags[k])
+                                               for k in forms),
+               "each item reads rank as an integer, cd and score in nm, the count of its context")
+        expect(sum(int(t.split()[0].replace(",", "")) for t in tags.get("count", [])) == total or groups > 1000,
+               "the items' counts add up to the layer's %d gauges" % total)
+        import linf_opc.bar as bar
+        expect(bar.Bar.last == ["reading the layer", "diagram and gauges (core)", "pitch and contexts (core)",
+                                "drawing", "marker browser"], "the progress bar names the stages: %s" % bar.Bar.last)
         view.zoom_box(cell.dbbox_per_layer(ly.find_layer(L, D)))
         later(1000, gauges_shot)
         return
@@ -198,6 +186,7 @@ def gauges_shot():
         shot = base + "_gauges" + ext
         view.save_image(shot, 1200, 800)
         expect(os.path.getsize(shot) > 12000, "screenshot %s (%d bytes)" % (shot, os.path.getsize(shot)))
+        check_group(view, "with the gauges")
         if ly.is_editable():
             mw.cm_undo()
             li = ly.find_layer(L, 210)
@@ -234,7 +223,20 @@ def select_step():
         later(700, fill_select_dialog)
         rdbs = view.num_rdbs()
         mw.menu().action("tools_menu.linf_opc.select").trigger()
+        # A rerun replaces its report database instead of adding another (once the layer list
+        # shows the regrouped layers).
+        import time
+        end = time.monotonic() + 0.7
+        while time.monotonic() < end:
+            app.process_events()
+        expect(select(view, ly), "layer selected again for the rerun")
+        state.pop("dialog_shot", None)
+        later(700, fill_select_dialog)
+        mw.menu().action("tools_menu.linf_opc.select").trigger()
         expected_dialog.pop()
+        names = [view.rdb(i).name() for i in range(view.num_rdbs())]
+        expect(names.count("patterns %d/%d" % (L, D)) == 1 and state.get("dialog_shot") is True,
+               "a rerun replaces the patterns database: %s" % names)
         li = ly.find_layer(L, 220)
         n = cell.shapes(li).size() if li is not None else 0
         expect(n > 0, "windows layer filled: %d windows" % n)
@@ -247,8 +249,10 @@ def select_step():
         expect({"A 5x5", "A 6x6", "C 6x6", "markers"} <= names, "one category per size and mode, and the markers")
         expect(state.get("dialog_shot") is True, "dialog screenshot saved")
         if ly.is_editable():
-            mw.cm_undo()
+            mw.cm_undo()  # the rerun's step: the first run's windows are back
             li = ly.find_layer(L, 220)
+            expect(li is not None and cell.shapes(li).size() == n, "undo of the rerun gives the first run's windows")
+            mw.cm_undo()
             expect(li is None or cell.shapes(li).size() == 0, "undo removes the windows")
         later(500, flow_step)
         return
@@ -264,13 +268,68 @@ def fill_flow_dialog():
     if d is None:
         return
     d.layer.currentIndex = d.layer.findText(g["layer"])
+    expect(d.markers.currentText == "", "the markers are not the working layer by default (%r)" % d.markers.currentText)
+    # Only the chosen split's fields can be edited.
+    d.split.currentIndex = 1  # stratified
+    expect(d.fraction.enabled and d.seed.enabled and not d.budget.enabled and not d.threshold.enabled,
+           "stratified: its fraction and seed only")
+    d.split.currentIndex = 0  # the budgeted gauge plan
+    expect(d.budget.enabled and d.verify.enabled and not d.fraction.enabled and not d.threshold.enabled,
+           "plan: its budget and verification size only")
+    # Refusals, in sentences, and a question for what may be a slip (answered No: the dialog stays).
+    v = dict(d.values(), markers=g["markers"], pitch="100000", budget="0", out="")
+    errors, _ = dialogs.flow_problems(v, d.layout_um)
+    expect(any("larger than the layout" in e for e in errors) and any("budget" in e for e in errors)
+           and any("output folder" in e for e in errors), "refused: a pitch above the layout, budget 0, no folder "
+           "(%s)" % errors)
+    # The Dask scheduler: blank (this computer) by default; an address that is not tcp://HOST:PORT refused.
+    expect(d.values().get("scheduler") == "", "the Dask scheduler field is blank by default")
+    errors, _ = dialogs.flow_problems(dict(v, scheduler="farm-head:8786"), d.layout_um)
+    expect(any("Dask scheduler" in e for e in errors), "refused: a scheduler without tcp:// (%s)" % errors)
+    errors, _ = dialogs.flow_problems(dict(v, scheduler="tcp://farm-head:8786"), d.layout_um)
+    expect(not any("Dask scheduler" in e for e in errors), "accepted: tcp://farm-head:8786 (%s)" % errors)
+    asked = []
+    d.confirm = lambda parent, q: asked.append(q) and False
+    d.markers.setEditText(g["layer"])
+    d.out.text = state["flow_out"]
+    d._ok()
+    expect(len(asked) == 1 and "working layer" in asked[0] and d.visible, "the working layer as markers: asked, "
+           "and No keeps the dialog open (%s)" % asked)
     d.markers.setEditText(g["markers"])
     d.sizes.text = "5,6"
-    d.split.currentIndex = 0
+    d.budget.text = "50"
+    d.verify.text = "20"
     d.fraction.text = "0.3"
-    d.out.text = state["flow_out"]
     state["flow_shot"] = d.grab().save(os.path.splitext(g["shot"])[0] + "_flow_dialog.png")
-    d.accept()
+    d._ok()
+    expect(not asked[1:], "valid values into an empty folder: no question")
+    later(1000, check_results)
+
+
+def check_results():
+    """The results dialog after the flow: counts, the folder, the buttons; then closed."""
+    import linf_opc.dialogs as dialogs
+    d = dialogs.current
+    if d is None or not isinstance(d, dialogs.ResultsDialog):
+        state["results_wait"] = state.get("results_wait", 0) + 1
+        if state["results_wait"] < 300:
+            later(500, check_results)
+        return
+    text = d.text()
+    say("results dialog:\n" + text)
+    expect("Markers covered" in text and "Calibration" in text and "Verification" in text and "contexts" in text
+           and "Pattern classes" in text and state["flow_out"] in text, "the results dialog: sets, markers, "
+           "contexts, classes, the folder")
+    buttons = [c.text for c in d.findChildren(pya.QPushButton)] if hasattr(d, "findChildren") else []
+    state["results_shot"] = d.grab().save(os.path.splitext(g["shot"])[0] + "_results_dialog.png")
+    state["results_buttons"] = buttons
+    named = {b.text: b for b in d._keep}
+    expect(sorted(named) == ["Open report.html", "Show calibration clips", "Show the plan in the marker browser"],
+           "the results dialog's buttons: %s" % sorted(named))
+    if "Show the plan in the marker browser" in named:
+        named["Show the plan in the marker browser"].click()  # closes the dialog, opens the marker browser
+    else:
+        d.reject()
 
 
 def check_remembered():
@@ -278,6 +337,7 @@ def check_remembered():
     import linf_opc.dialogs as dialogs
     d = dialogs.current
     expect(d is not None and d.markers.currentText == g["markers"] and d.sizes.text == "5,6"
+           and d.budget.text == "50" and d.verify.text == "20" and d.split.currentIndex == 0
            and d.out.text == state["flow_out"], "the flow dialog remembers its settings")
     if d is not None:
         d.reject()
@@ -292,19 +352,25 @@ def flow_step():
         state["flow_out"] = tempfile.mkdtemp(prefix="linf_flow_")
         expect(mw.menu().is_valid("tools_menu.linf_opc.flow"), "flow menu entry registered")
         expected_dialog.append("Run OPC pattern flow")
+        expected_dialog.append("OPC pattern flow: results")
         later(700, fill_flow_dialog)
         rdbs = view.num_rdbs()
         mw.menu().action("tools_menu.linf_opc.flow").trigger()
         files = sorted(os.listdir(state["flow_out"]))
         say("flow outputs: %s" % files)
-        expect({"voronoi.csv", "gauges.csv", "windows.csv", "report.html", "calibration.oas", "verification.oas",
-                "split.json", "flow.lyrdb"} <= set(files), "the flow wrote every stage's files")
+        # The editor writes the flow's default files: the plan, the windows and the reports.
+        expect(files == sorted(["windows.csv", "pattern_classes.csv", "windows.oas", "stats.json", "report.html",
+                                "calibration.oas", "verification.oas", "calibration_gauges.csv",
+                                "verification_gauges.csv", "split.json", "flow.lyrdb", "summary.json"]),
+               "the flow wrote its default files, no more")
         li = ly.find_layer(L, 220)
         expect(li is not None and cell.shapes(li).size() > 0, "the flow drew the windows")
         expect(view.num_rdbs() == rdbs + 1, "the flow's report database is in the marker browser")
         expect(state.get("flow_shot") is True, "flow dialog screenshot saved")
+        expect(state.get("results_shot") is True, "the results dialog came up (screenshot saved)")
         later(700, check_remembered)
         mw.menu().action("tools_menu.linf_opc.flow").trigger()
+        expected_dialog.pop()
         expected_dialog.pop()
         expect(view.num_rdbs() == rdbs + 1, "cancelling the dialog runs nothing")
         later(500, farthest_step)
@@ -383,6 +449,30 @@ def crash_step():
         mw.menu().action("tools_menu.linf_opc.gauges").trigger()
         li = ly.find_layer(L, 210)
         expect(li is not None and cell.shapes(li).size() > 0, "the next run works")
+        names = [view.rdb(i).name() for i in range(view.num_rdbs())]
+        expect(names.count("gauges %d-%d.lyrdb" % (L, D)) == 1, "a rerun replaces its report database: %s" % names)
+        later(500, input_layer_step)  # once the layer list shows the regrouped layers
+        return
+    except Exception as e:
+        expect(False, "exception: %s" % e)
+    finish()
+
+
+def input_layer_step():
+    """Messages about the input: a result layer of the plugin, then no layer at all."""
+    try:
+        view, ly = state["view"], state["ly"]
+        # A result layer of the plugin (zero-width paths) as the input: a message that says so.
+        if select(view, ly, 200):
+            capture_titles.append("L")
+            del captured[:]
+            mw.menu().action("tools_menu.linf_opc.voronoi").trigger()
+            capture_titles.pop()
+            say("message on the diagram layer: %s" % captured)
+            expect(any("holds no area" in c and "Select a drawing layer" in c for c in captured),
+                   "the diagram layer as input: it holds no area, select a drawing layer")
+        else:  # the editor's test has undone the diagram
+            say("no diagram layer L/200 left to try as input")
         # No layer to work on: a new empty layout. A message, nothing else.
         mw.create_layout(1)
         capture_titles.append("L")

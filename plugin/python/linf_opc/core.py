@@ -12,12 +12,19 @@ DiagramError = _core.DiagramError
 MODULE_DIR = __import__("os").path.dirname(_core.__file__)
 
 _runner = None  # while set: a callable (name, args, kwargs) -> result, running the call elsewhere
+_tiles = None  # while set: the diagram's tiles are built by it (cluster.Tiles), this process only
+_scheduler = None  # while set: the same, for calls run by _runner (the editor's worker process)
+_TILED = ("voronoi_polygons", "gauges_polygons")  # the calls that build the diagram
 
 
 def _call(name):
     def call(*args, **kwargs):
         if _runner is not None:
+            if _scheduler is not None and name in _TILED and not kwargs.get("pieces"):
+                kwargs["scheduler"] = _scheduler  # the worker process connects (worker.py)
             return _runner(name, args, kwargs)
+        if _tiles is not None and name in _TILED and not kwargs.get("pieces"):
+            kwargs["tiles"] = _tiles
         return getattr(_core, name)(*args, **kwargs)
     call.__name__ = name
     call.__doc__ = getattr(_core, name).__doc__
@@ -27,17 +34,26 @@ def _call(name):
 voronoi_polygons = _call("voronoi_polygons")
 voronoi_sites = _call("voronoi_sites")
 gauges_polygons = _call("gauges_polygons")
+gauge_contexts = _call("gauge_contexts")
 write_gauges_gds = _call("write_gauges_gds")
+write_gauges_csv_rows = _call("write_gauges_csv_rows")
 oasis_from_drawing = _call("oasis_from_drawing")
 write_clip_library = _call("write_clip_library")
 picture_coverage = _call("picture_coverage")
 select_windows = _call("select_windows")
 cover_points = _call("cover_points")
+classify_patterns = _call("classify_patterns")
 free_windows = _call("free_windows")
 estimate_pitch = _call("estimate_pitch")
 estimate_pitch_of_gauges = _call("estimate_pitch_of_gauges")
 farthest_voronoi = _call("farthest_voronoi")
-cgal_construction_seconds = _call("cgal_construction_seconds")
+gauge_printability = _call("gauge_printability")
+# The model's kernels are a core object held in the process that made them (the batch's).
+litho_kernels = _core.litho_kernels
+calibrate_threshold = _core.calibrate_threshold
+litho_window_images = _core.litho_window_images
+# Arithmetic on one segment, called once a drawn edge: always in this process.
+cut_to_drawable = _core.cut_to_drawable
 
 
 @contextlib.contextmanager
@@ -49,3 +65,27 @@ def running_with(runner):
         yield
     finally:
         _runner = previous
+
+
+@contextlib.contextmanager
+def tiles_with(tiles):
+    """Inside the block, the calls that build the diagram have its tiles built by `tiles`
+    (cluster.Tiles: on a Dask cluster); the same results."""
+    global _tiles
+    previous, _tiles = _tiles, tiles
+    try:
+        yield
+    finally:
+        _tiles = previous
+
+
+@contextlib.contextmanager
+def tiles_at(address):
+    """Inside the block, calls run by a runner (the editor's worker process) have the diagram's
+    tiles built on the Dask cluster at `address`; the worker process connects to it."""
+    global _scheduler
+    previous, _scheduler = _scheduler, address
+    try:
+        yield
+    finally:
+        _scheduler = previous

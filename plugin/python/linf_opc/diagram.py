@@ -20,7 +20,7 @@ Piece = namedtuple("Piece", "kind x1 y1 x2 y2 d1 d2 a_x1 a_y1 a_x2 a_y2 b_x1 b_y
 class Diagram:
     def __init__(self, raw, seconds_total, csv_path=None, gds_path=None):
         self.csv_path = csv_path  # where the core already wrote the pieces as CSV, if it did
-        # The pieces as GDSII, for output.add_layers; a temporary file, removed with the Diagram.
+        # The pieces as GDSII, for diagram_output; a temporary file, removed with the Diagram.
         self.gds_path = gds_path
         if gds_path:
             weakref.finalize(self, drawing.remove, gds_path)
@@ -40,17 +40,18 @@ class Diagram:
 
 
 def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=1.0, with_pieces=True,
-            draw_layer=None, draw_cell="VORONOI"):
+            draw_layer=None, draw_cell="VORONOI", threads=0):
     """tile: side of the builder's tiles in DBU; 0 one tile, -1 automatic. The diagram is the
     same for every tile size; tiles bound the memory the builder holds at once.
     csv_path: the core also writes voronoi.csv there (micrometres, `dbu`).
-    draw_layer: a layer number: the core also writes the pieces as GDSII for output.add_layers
+    draw_layer: a layer number: the core also writes the pieces as GDSII for diagram_output
     (datatypes 200 + kind; one cell named draw_cell).
     with_pieces=False: no Python object per piece (a full layer has tens of millions of them):
-    Diagram.pieces is None, n_pieces and counts() remain."""
+    Diagram.pieces is None, n_pieces and counts() remain.
+    threads: builder workers, 0 one a core (benchmarks compare at equal threads)."""
     t0 = time.perf_counter()
     raw, gds = drawing.drawn_by(
-        lambda gds: core.voronoi_polygons(core_input(polygons), check, check_pairs, tile=tile, csv=csv_path or "",
+        lambda gds: core.voronoi_polygons(core_input(polygons), check, check_pairs, threads, tile=tile, csv=csv_path or "",
                                           dbu=dbu, pieces=with_pieces, gds=gds, gds_layer=draw_layer or 0,
                                           gds_cell=draw_cell),
         draw_layer is not None)

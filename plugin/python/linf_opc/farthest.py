@@ -115,7 +115,8 @@ LAYER_DATATYPE, SQUARE_DATATYPE = 240, 241
 
 def add_layers(layout, cell, result, clip, layer):
     """The diagram (zero-width paths) on L/240 and the smallest touching square on L/241,
-    both cleared first. Returns the number of edges drawn."""
+    both cleared first; edges and rays cut to +-(2^31 - 1) DBU (core.cut_to_drawable). Returns
+    the number of edges drawn."""
     li = layout.find_layer(pya.LayerInfo(layer, LAYER_DATATYPE))
     li = li if li is not None else layout.insert_layer(pya.LayerInfo(layer, LAYER_DATATYPE, "farthest voronoi"))
     ls = layout.find_layer(pya.LayerInfo(layer, SQUARE_DATATYPE))
@@ -123,7 +124,13 @@ def add_layers(layout, cell, result, clip, layer):
     cell.shapes(li).clear()
     cell.shapes(ls).clear()
     n = 0
-    for kind, x1, y1, x2, y2, w, lo, ro in segments(result, clip):
+    for kind, *ends, w, lo, ro in segments(result, clip):
+        # Rays reach the clip box, beyond 32 bits for sites near +-2^30: cut where layouts can
+        # hold them (pya.Point would wrap the coordinate around); farthest.csv keeps them whole.
+        ends = core.cut_to_drawable(*ends)
+        if ends is None:
+            continue
+        x1, y1, x2, y2 = ends
         a, b = pya.Point(round(x1), round(y1)), pya.Point(round(x2), round(y2))
         if a != b:
             cell.shapes(li).insert(pya.Path([a, b], 0))

@@ -3,7 +3,7 @@
 in:  polygons [(outer, [holes])] in integer DBU, or a polygons.Polygons
 out: Gauges: every gauge candidate of the layer, ranked (rank 1 = most likely to pinch or
      bridge), with the diagram's summary and timings. The diagram is built and checked first.
-The rules where the thesis leaves a choice open are in the README, "Gauges".
+The rules where the thesis leaves a choice open are in docs/design.md, "Gauge rules".
 """
 import time
 from array import array
@@ -148,19 +148,19 @@ def columns_file():
 
 
 def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, draw_layer=None,
-            with_paths=False, tile=-1, csv_path=None, dbu=1.0, gauges_csv=None, draw_cell="VORONOI"):
+            with_paths=False, tile=-1, csv_path=None, dbu=1.0, gauges_csv=None, draw_cell="VORONOI", threads=0):
     """draw_layer: a layer number: also keep the diagram, drawable (Gauges.pieces_diagram, a
     diagram.Diagram with its GDSII file, see diagram.compute, also for draw_cell), so that a flow writes both
     without building the diagram twice. with_paths: each gauge's `stretch` is its stretch's
     path [(x, y)] (else None). tile, csv_path, dbu: as in diagram.compute (the gauges are the
     same for every tile size). gauges_csv: the core also writes gauges.csv there (micrometres,
-    `dbu`; Gauges.csv_path)."""
+    `dbu`; Gauges.csv_path). threads: builder workers, 0 one a core."""
     from .diagram import Diagram
     t0 = time.perf_counter()
     columns = columns_file()
     try:
         raw, gds = drawing.drawn_by(
-            lambda gds: core.gauges_polygons(core_input(polygons), check, 2000, 0, tooth_fraction, space_limit_widths,
+            lambda gds: core.gauges_polygons(core_input(polygons), check, 2000, threads, tooth_fraction, space_limit_widths,
                                              False, with_paths, tile=tile, csv=csv_path or "", dbu=dbu, gds=gds,
                                              gds_layer=draw_layer or 0, gds_cell=draw_cell,
                                              gauges_csv=gauges_csv or "", columns=columns),

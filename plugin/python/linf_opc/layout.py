@@ -3,6 +3,7 @@ import pya
 
 from . import glp
 from .polygons import Polygons
+from .progress import breathe
 
 
 def read_layout(path, options=None):
@@ -41,16 +42,33 @@ MERGE_IN_KLAYOUT_MAX = 200000
 def region_of(cell, layer_index):
     """The layer's shapes in `cell` and below, flattened, with merged semantics (booleans and
     checks see overlaps and touches joined); merged by KLayout up to MERGE_IN_KLAYOUT_MAX
-    shapes, else as drawn. A flat region either way."""
+    shapes (in the hierarchy, or flat where a polygon is a balanced bow-tie), else as drawn.
+    A flat region either way."""
     region = pya.Region(cell.begin_shapes_rec(layer_index))
     region.merged_semantics = True
     if region.count() > MERGE_IN_KLAYOUT_MAX:
         return region
+    if _balanced_self_intersection(cell, layer_index):
+        return region.merged()
     store = pya.DeepShapeStore()
     merged = pya.Region()
     merged.insert(pya.Region(cell.begin_shapes_rec(layer_index), store).merged())
     merged.merged_semantics = True
     return merged
+
+
+def _balanced_self_intersection(cell, layer_index):
+    """Whether a polygon drawn in `cell` or below has lobes of opposite winding that cancel (a
+    bow-tie: signed area 0, yet area where merged). KLayout's hierarchical merge drops such a
+    polygon whole, the flat merge keeps its lobes. Each cell's polygons are looked at once,
+    not each placement."""
+    layout = cell.layout()
+    for ci in [cell.cell_index()] + list(cell.called_cells()):
+        for shape in layout.cell(ci).shapes(layer_index).each(pya.Shapes.SPolygons):
+            poly = shape.polygon
+            if poly.area() == 0 and pya.Region(poly).merged().count() > 0:
+                return True
+    return False
 
 
 def _add(out, poly):
@@ -83,6 +101,8 @@ def polygons_of(region, spill_over=None):
     rings as [(x, y)] in integer DBU): the region's polygons as they are (each(), not merged).
     A layer of more than `spill_over` shapes goes to a mapped file as it is read (Polygons.spill)."""
     out = Polygons(spill_over)
-    for poly in region.each():
+    n = region.count()
+    for k, poly in enumerate(region.each()):
+        breathe(k, n)
         _add(out, poly)
     return out.done()

@@ -7,10 +7,14 @@ A marker SPEC is one of
                     ICCAD16 hotspot files def,id,category,x,y) or x1,y1,x2,y2 (boxes); a
                     suffix @um reads micrometres instead.
 Identical markers (the same hotspot under several process conditions) count once. Rows that
-do not parse are skipped and counted; a file with no usable row is an error.
+do not parse, or hold a coordinate that is not a finite number (nan, inf), are skipped and
+counted; a file with no usable row is an error. Markers wholly outside the layout are kept (they
+are simply never covered) and counted, with a warning line on stderr.
 """
 import csv
+import math
 import os
+import sys
 
 import pya
 
@@ -25,10 +29,23 @@ class Markers:
         self.source = source
         self.skipped = skipped      # malformed rows
         self.duplicates = duplicates
+        self.outside = 0            # markers sharing no point with the layout's box (load sets it)
 
     def summary(self):
         return {"source": self.source, "markers": len(self.boxes), "skipped_rows": self.skipped,
-                "duplicates_merged": self.duplicates}
+                "duplicates_merged": self.duplicates, "outside_layout": self.outside}
+
+
+def warn(text):
+    """A warning on stderr: the run goes on (also under -rd quiet=1, which silences progress only)."""
+    sys.stderr.write("linf_opc: warning: %s\n" % text)
+    sys.stderr.flush()
+
+
+def outside(boxes, box):
+    """How many markers share no point with `box` (x1, y1, x2, y2; closed)."""
+    x1, y1, x2, y2 = box
+    return sum(1 for b in boxes if b[2] < x1 or b[0] > x2 or b[3] < y1 or b[1] > y2)
 
 
 def _unique(boxes):
@@ -87,7 +104,11 @@ def from_rdb(path, dbu):
         if box.empty():
             skipped += 1
             continue
-        boxes.append(tuple(c / dbu for c in (box.left, box.bottom, box.right, box.top)))
+        b = tuple(c / dbu for c in (box.left, box.bottom, box.right, box.top))
+        if not all(math.isfinite(c) for c in b):
+            skipped += 1
+            continue
+        boxes.append(b)
     boxes, dup = _unique(boxes)
     return Markers(boxes, path, skipped, dup)
 
@@ -99,7 +120,10 @@ def from_csv(path, dbu, micrometres=False):
     except OSError as e:
         raise MarkerError("cannot read marker file %s: %s" % (path, e.strerror))
     with f:
-        rows = list(csv.reader(f))
+        try:
+            rows = list(csv.reader(f))
+        except (csv.Error, UnicodeDecodeError) as e:  # binary data, a NUL byte, a field of megabytes
+            raise MarkerError("cannot read marker file %s: %s" % (path, e))
     if not rows:
         raise MarkerError("marker file %s is empty" % path)
     head = [h.strip().lower() for h in rows[0]]
@@ -117,6 +141,9 @@ def from_csv(path, dbu, micrometres=False):
         except (ValueError, IndexError):
             skipped += 1
             continue
+        if not (math.isfinite(x1) and math.isfinite(y1) and math.isfinite(x2) and math.isfinite(y2)):
+            skipped += 1  # nan, inf, or a number that overflows once scaled (1e308 um)
+            continue
         boxes.append((min(x1, x2), min(y1, y2), max(x1, x2), max(y1, y2)))
     if not boxes:
         raise MarkerError("marker file %s has no usable row (%d skipped)" % (path, skipped))
@@ -125,12 +152,25 @@ def from_csv(path, dbu, micrometres=False):
 
 
 def load(spec, layout, cell):
-    """Markers from a SPEC (see the module's doc), in the layout's DBU."""
+    """Markers from a SPEC (see the module's doc), in the layout's DBU. Markers wholly outside
+    the cell's box are counted (Markers.outside) and warned about."""
+    m = _load(spec, layout, cell)
+    b = cell.bbox()
+    m.outside = outside(m.boxes, (b.left, b.bottom, b.right, b.top)) if not b.empty() else len(m.boxes)
+    if m.outside:
+        warn("%d of %d markers of %s lie wholly outside the layout (cell %s): they cannot be covered"
+             % (m.outside, len(m.boxes), m.source, cell.name))
+    return m
+
+
+def _load(spec, layout, cell):
     if not spec:
         raise MarkerError("no marker source given")
     micrometres = spec.endswith("@um")
     path = spec[:-3] if micrometres else spec
     low = path.lower()
+    if os.path.isdir(path):
+        raise MarkerError("the marker source %s is a folder, not a file" % path)
     if low.endswith(".csv"):
         return from_csv(path, layout.dbu, micrometres)
     if low.endswith(".lyrdb") or low.endswith(".rdb"):
@@ -138,3 +178,9 @@ def load(spec, layout, cell):
             raise MarkerError("marker file not found: %s" % path)
         return from_rdb(path, layout.dbu)
     return from_layer(cell, layout, path)
+
+
+def same_as_working(spec, layer, datatype):
+    """True where the marker SPEC names the working layer itself: then every shape of the layer
+    is a marker (its bounding box), which is legal but rarely meant."""
+    return layer_of(spec) == (layer, datatype)

@@ -7,19 +7,25 @@ import os
 
 import pya
 
-from . import batch
+from . import arguments
+from . import bar as progress_bar
+from . import contexts
 from . import core
 from . import diagram as diagram_stage
+from . import diagram_output
 from . import dialogs
 from . import farthest as farthest_stage
+from . import flow
 from . import gauge_output
 from . import gauges as gauge_stage
+from . import layer_style
 from . import layout as layer_io
 from . import markers as marker_io
-from . import output
 from . import selection as selection_stage
 from . import selection_output
 from . import worker
+from .inputs import Input
+from .progress import count
 
 MENU = "tools_menu.linf_opc"
 TITLE = "L\u221e Voronoi OPC"
@@ -27,6 +33,15 @@ TITLE = "L\u221e Voronoi OPC"
 
 def _warn(text):
     pya.MessageBox.warning(TITLE, text, pya.MessageBox.Ok)
+
+
+def _sentence(text):
+    """A batch message ("no marker source given") as the editor says it: a sentence."""
+    text = text.strip()
+    if not text:
+        return text
+    text = text[0].upper() + text[1:]
+    return text if text.endswith((".", "?", "!")) else text + "."
 
 
 def current_layer(view):
@@ -68,55 +83,77 @@ def _layer_polygons():
     cv, index, info = sel
     polygons = layer_io.polygons_of(layer_io.region_of(cv.cell, index))
     if not polygons:
-        _warn("Layer %s has no shapes in cell %s." % (info.to_s(), cv.cell.name))
+        shapes = sum(1 for _ in cv.cell.begin_shapes_rec(index).each())
+        if shapes:  # a result layer of this plugin (zero-width paths), texts, or zero-area shapes
+            _warn("Layer %s holds no area in cell %s: its %d shapes are lines of no width, texts or shapes of no "
+                  "area (a result layer of this plugin is drawn so). Select a drawing layer."
+                  % (info.to_s(), cv.cell.name, shapes))
+        else:
+            _warn("Layer %s has no shapes in cell %s. Select a drawing layer, or the cell that holds it."
+                  % (info.to_s(), cv.cell.name))
         raise _Stop()
     return mw, view, cv, info, polygons
 
 
-def _undoable(view, ly, title, draw):
-    """Runs draw() and adds the new layers to the layer list in one undo step; viewer mode
-    keeps no undo history for shapes."""
+def _show_report(view, name, write):
+    """The report database that write(path) writes as a file, loaded at once into the marker
+    browser as `name`.lyrdb (KLayout names a loaded database after its file), in place of the
+    one a previous run left there: filled item by item through KLayout's API it froze the
+    editor for half a minute on a large layer."""
+    import shutil
+    import tempfile
+    folder = tempfile.mkdtemp(prefix="linf_opc_rdb_")
+    try:
+        path = os.path.join(folder, name + ".lyrdb")
+        write(path)
+        rdb = pya.ReportDatabase(name)
+        rdb.load(path)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    return _add_report(view, rdb)
+
+
+def _add_report(view, rdb):
+    """Adds a loaded report database to the view and shows it, in place of one of the same
+    name (KLayout names a loaded database after its file) a previous run left there."""
+    for i in reversed(range(view.num_rdbs())):
+        if view.rdb(i).name() == rdb.name():
+            view.remove_rdb(i)
+    index = view.add_rdb(rdb)
+    view.show_rdb(index, view.active_cellview_index())
+    return index
+
+
+def _undoable(view, ly, title, draw, working):
+    """Runs draw() and puts the new layers into the layer list (layer_style: the group of the
+    working layer (layer, datatype)) in one undo step; viewer mode keeps no undo history for
+    shapes."""
     undoable = ly.is_editable()
     if undoable:
         view.transaction(title)
     try:
         result = draw()
-        view.add_missing_layers()
+        layer_style.show(view, ly, *working)
     finally:
         if undoable:
             view.commit()
     return result
 
 
-def _runner():
-    """The core runs in a watched worker process; while it works, the editor stays responsive
-    and the progress bar's cancel button stops it."""
-    app = pya.Application.instance()
-    busy = pya.AbsoluteProgress("computing")
-    busy.format = "%.0f s"
-    busy.unit = 1
-
-    def wait(elapsed):
-        busy.set(int(elapsed), True)  # raises when the person cancels
-        app.process_events()
-    failures = os.path.join(app.application_data_path(), "linf_opc_failures")
-    runner = worker.Runner(wait, failures)
-    runner.progress = busy
-    return runner
-
-
-def _run(title, action, steps=3):
-    """The editor survives anything the flow does: the core runs in a worker process, and
-    every failure becomes a message."""
-    progress = pya.RelativeProgress(title, steps)
-    runner = _runner()
+def _run(title, action):
+    """The editor survives anything the flow does: the core runs in a watched worker process
+    (while it works, the editor stays responsive and the progress bar's cancel button stops it),
+    and every failure becomes a message. action(bar) names its stages with bar.start(stage)."""
+    bar = progress_bar.Bar(title)
+    failures = os.path.join(pya.Application.instance().application_data_path(), "linf_opc_failures")
+    runner = worker.Runner(bar.waiting, failures)
     try:
         with core.running_with(runner):
-            action(progress)
+            action(bar)
     except _Stop:
         pass
-    except batch.UsageError as e:
-        _warn(str(e))
+    except arguments.UsageError as e:
+        _warn(_sentence(str(e)))
     except diagram_stage.core.DiagramError as e:
         pya.MessageBox.critical(TITLE, "The diagram failed its independent check; nothing was drawn:\n%s" % e,
                                 pya.MessageBox.Ok)
@@ -124,26 +161,31 @@ def _run(title, action, steps=3):
         pya.Application.instance().main_window().message("%s cancelled" % title, 5000)
     except worker.WorkerError as e:
         pya.MessageBox.critical(TITLE, "%s: %s" % (title, e), pya.MessageBox.Ok)
+    except ValueError as e:  # input the core refuses (a coordinate beyond +-2^30, a bad marker file, ...)
+        _warn("%s cannot run on this input: %s. Your layout was not changed." % (title, str(e).strip().rstrip(".")))
     except Exception as e:
-        if "cancel" in str(e).lower():  # the progress bar's cancel button raises in inc()
+        if "cancel" in str(e).lower():  # the progress bar's cancel button raises in set()
             pya.Application.instance().main_window().message("%s cancelled" % title, 5000)
         else:
             pya.MessageBox.critical(TITLE, "%s failed: %s" % (title, e), pya.MessageBox.Ok)
     finally:
-        runner.progress._destroy()
-        progress._destroy()
+        bar.close()
 
 
 def voronoi_of_current_layer():
-    def action(progress):
+    def action(bar):
+        bar.start("reading the layer")
         mw, view, cv, info, polygons = _layer_polygons()
-        progress.inc()
+        bar.start("diagram (core)")
         diagram = diagram_stage.compute(polygons, dbu=cv.layout().dbu, with_pieces=False, draw_layer=info.layer)
-        progress.inc()
+        bar.start("drawing")
         ly = cv.layout()
+        # Drawn within the layer's box: "zoom fit" shows the layout, not rays (voronoi.oas keeps them).
+        box = cv.cell.bbox_per_layer(ly.find_layer(info.layer, info.datatype))
+        drawn = diagram_output.drawing(diagram, info.layer, box)
         _undoable(view, ly, "L\u221e Voronoi diagram of %s" % info.to_s(),
-                  lambda: output.add_layers(ly, cv.cell, diagram, info.layer, info.datatype))
-        progress.inc()
+                  lambda: diagram_output.add_layers(ly, cv.cell, diagram, info.layer, info.datatype, drawn),
+                  (info.layer, info.datatype))
         c = diagram.counts()
         mw.message("L\u221e Voronoi: %d pieces (internal %d, external %d, notch %d, adjacent %d), checked, %.2f s"
                    % (diagram.n_pieces, c["internal"], c["external"], c["notch"], c["adjacent"],
@@ -152,31 +194,41 @@ def voronoi_of_current_layer():
 
 
 def gauges_of_current_layer():
-    def action(progress):
+    def action(bar):
+        bar.start("reading the layer")
         mw, view, cv, info, polygons = _layer_polygons()
-        progress.inc()
+        bar.start("diagram and gauges (core)")
         result = gauge_stage.compute(polygons)
-        progress.inc()
         ly = cv.layout()
-        _undoable(view, ly, "Gauges on %s" % info.to_s(),
-                  lambda: gauge_output.add_layer(ly, cv.cell, result.gauges, info.layer, info.datatype))
-        index = view.create_rdb("gauges %s" % info.to_s())
-        gauge_output.report(result.gauges, ly.dbu, cv.cell.name, cv.filename(), view.rdb(index))
-        view.show_rdb(index, view.active_cellview_index())
-        progress.inc()
-        c = result.counts()
+        # Drawn for reading: the representatives of the most critical (type, context) groups, the
+        # context that of a 7 x 7 window (radius 3.5 pitches); the marker browser holds the same.
+        bar.start("pitch and contexts (core)")
+        pitch = selection_stage.pitch_of(result.gauges)
+        groups = contexts.Contexts(result.gauges, contexts.context_ids(result.gauges, polygons,
+                                                                        3.5 * pitch if pitch > 0 else 1000.0))
+        bar.start("drawing")
+        drawn = _undoable(view, ly, "Gauges on %s" % info.to_s(),
+                          lambda: gauge_output.add_representatives(ly, cv.cell, result.gauges, groups, info.layer,
+                                                                   info.datatype),
+                          (info.layer, info.datatype))
+        bar.start("marker browser")
+        _show_report(view, "gauges %d-%d" % (info.layer, info.datatype), lambda path: gauge_output.write_drawn_report(
+            result.gauges, groups, drawn, ly.dbu, cv.cell.name, cv.filename(), path))
+        c = {k: count(v) for k, v in result.counts().items()}
         best = result.gauges[0] if result.gauges else None
-        cap = gauge_output.REPORT_MAX_PER_TYPE
-        mw.message("Gauges: %d (internal %d, external %d, sandwich %d, comb %d, T %d)%s%s, %.2f s"
-                   % (len(result.gauges), c["internal"], c["external"], c["sandwich"], c["comb"], c["T"],
-                      "; most critical: %s %.4g um" % (best.type, best.cd * ly.dbu) if best else "",
-                      "; the marker browser holds the %d most critical of each type" % cap
-                      if max(c.values()) > cap else "", result.seconds["total"]), 10000)
+        mw.message("Gauges: %s (internal %s, external %s, sandwich %s, comb %s, T %s) in %s contexts; the %s most "
+                   "critical contexts drawn and in the marker browser%s; %.1f s"
+                   % (count(len(result.gauges)), c["internal"], c["external"], c["sandwich"], c["comb"], c["T"],
+                      count(len(groups)), count(len(drawn)),
+                      "; most critical: %s %.4g nm" % (best.type, best.cd * ly.dbu * 1000) if best else "",
+                      result.seconds["total"]), 10000)
+        gauges_of_current_layer.last = (len(result.gauges), len(groups), len(drawn))
     _run("Gauges", action)
 
 
 def select_patterns():
-    def action(progress):
+    def action(bar):
+        bar.start("reading the layer")
         mw, view, cv, info, polygons = _layer_polygons()
         ly = cv.layout()
         layers = ["%d/%d" % (i.layer, i.datatype) for i in (ly.get_info(k) for k in ly.layer_indexes())
@@ -185,16 +237,17 @@ def select_patterns():
         if values is None:
             return
         try:
-            sizes, modes, mode, size, pitch, _ = batch.select_args(dict(values, modes="A,B,C"), ly.dbu)
+            sizes, modes, mode, size, pitch, _ = arguments.select_args(dict(values, modes="A,B,C"), ly.dbu)
             markers = marker_io.load(values["markers"], ly, cv.cell)
-        except (batch.UsageError, marker_io.MarkerError) as e:
+        except (arguments.UsageError, marker_io.MarkerError) as e:
             _warn(str(e))
             raise _Stop()
         if not markers.boxes:
             _warn("No markers in %s." % markers.source)
             raise _Stop()
-        progress.inc()
+        bar.start("diagram and gauges (core)")
         result = gauge_stage.compute(polygons)
+        bar.start("selection (core)")
         if pitch is None:
             pitch = selection_stage.pitch_of(result.gauges)
         if not pitch or pitch <= 0:
@@ -202,13 +255,17 @@ def select_patterns():
             raise _Stop()
         st = selection_stage.study(result.gauges, markers.boxes, pitch, sizes, modes)
         chosen = st.best(mode)
-        progress.inc()
+        bar.start("drawing")
         _undoable(view, ly, "Pattern windows on %s" % info.to_s(),
-                  lambda: selection_output.add_layer(ly, cv.cell, chosen, info.layer, info.datatype))
-        index = view.create_rdb("patterns %s" % info.to_s())
+                  lambda: selection_output.add_layer(ly, cv.cell, chosen, info.layer, info.datatype),
+                  (info.layer, info.datatype))
+        name = "patterns %s" % info.to_s()
+        for i in reversed(range(view.num_rdbs())):  # a rerun replaces its report database
+            if view.rdb(i).name() == name:
+                view.remove_rdb(i)
+        index = view.create_rdb(name)
         selection_output.report(st, result.gauges, ly.dbu, cv.cell.name, view.rdb(index), markers)
         view.show_rdb(index, view.active_cellview_index())
-        progress.inc()
         row = chosen.row(ly.dbu)
         mw.message("Patterns: mode %s %s (pitch %.4g um): %d windows cover %d of %d markers (P_d %.2f%%)"
                    % (chosen.mode, row["W_s"], pitch * ly.dbu, len(chosen.windows), chosen.covered,
@@ -219,7 +276,7 @@ def select_patterns():
 def run_flow():
     """Run OPC pattern flow...: the dialog, then diagram -> gauges -> selection -> split written
     to the chosen folder, the windows drawn (one undo step) and the results in the marker browser."""
-    def action(progress):
+    def action(bar):
         mw, view = _open_view()
         cv = view.active_cellview()
         ly = cv.layout()
@@ -227,43 +284,51 @@ def run_flow():
                   if i.datatype < 200]
         sel = current_layer(view)
         here = "%d/%d" % (sel[2].layer, sel[2].datatype) if sel else None
-        values = dialogs.ask_flow(layers, here, "Run OPC pattern flow on %s" % cv.cell.name)
+        path = cv.filename()
+        beside = (os.path.join(os.path.dirname(path), os.path.splitext(os.path.basename(path))[0] + "_linf_opc")
+                  if path else "")
+        box = cv.cell.dbbox()
+        values = dialogs.ask_flow(layers, here, "Run OPC pattern flow on %s" % cv.cell.name, beside,
+                                  max(box.width(), box.height()))
         if values is None:
-            raise _Stop()
-        if not values["out"]:
-            _warn("Choose an output folder.")
             raise _Stop()
         l, d = layer_io.parse_layer(values["layer"])
         index = ly.find_layer(l, d)
         if index is None:
             _warn("Layer %s is not in the layout." % values["layer"])
             raise _Stop()
-        inp = batch.Input(ly, cv.cell, index, cv.filename(), values["out"])
+        bar.start("reading the layer")
+        inp = Input(ly, cv.cell, index, cv.filename(), values["out"])
         args = dict(values, modes="A,B,C", halves="0")
-
-        def step(stage):
-            progress.format = stage
-            progress.inc()
         try:
-            line, rdb_name, chosen = batch.flow(inp, args, step)
+            with core.tiles_at(values.get("scheduler") or None):  # blank: this computer
+                line, rdb_name, chosen = flow.run(inp, args, bar)  # it names its stages in the bar
             inp.out.commit()
         finally:
             inp.out.abort()  # no-op after a commit; a failed run leaves no partial files
+        bar.start("drawing")
         rdb = pya.ReportDatabase("flow")
         rdb.load(os.path.join(inp.dir, rdb_name))
         _undoable(view, ly, "OPC pattern flow on %s" % values["layer"],
-                  lambda: selection_output.add_layer(ly, cv.cell, chosen, l, d))
-        index = view.add_rdb(rdb)
-        view.show_rdb(index, view.active_cellview_index())
+                  lambda: selection_output.add_layer(ly, cv.cell, chosen, l, d), (l, d))
+        index = _add_report(view, rdb)
         mw.message(line, 20000)
         run_flow.last = line
-    _run("OPC pattern flow", action, steps=4)
+        run_flow.folder = inp.dir
+        run_flow.show_plan = lambda: view.show_rdb(index, view.active_cellview_index())
+    run_flow.folder = None
+    _run("OPC pattern flow", action)
+    if run_flow.folder:  # after the progress bar has gone
+        dialogs.show_results(run_flow.folder, "OPC pattern flow: results",
+                             lambda path: pya.Application.instance().main_window().load_layout(path, 1),
+                             run_flow.show_plan)
 
 
 def farthest_of_selection():
     """Farthest Voronoi of selection: the selected shapes, or the current layer's shapes in the
     visible area; the diagram on L/240, the smallest touching square on L/241 (one undo step)."""
-    def action(progress):
+    def action(bar):
+        bar.start("reading the shapes")
         mw, view = _open_view()
         cv = view.active_cellview()
         ly = cv.layout()
@@ -288,13 +353,13 @@ def farthest_of_selection():
         if not sites:
             _warn("No shapes to work on.")
             raise _Stop()
-        progress.inc()
+        bar.start("farthest diagram (core)")
         result = farthest_stage.compute(sites)
-        progress.inc()
+        bar.start("drawing")
         clip = farthest_stage.clip_for(sites)
         _undoable(view, ly, "Farthest Voronoi of %s" % what,
-                  lambda: farthest_stage.add_layers(ly, cv.cell, result, clip, info.layer))
-        progress.inc()
+                  lambda: farthest_stage.add_layers(ly, cv.cell, result, clip, info.layer),
+                  (info.layer, info.datatype))
         mw.message("Farthest Voronoi of %s: %d faces; smallest touching square %.6g um (half-side %.6g um)"
                    % (what, len(result.faces), 2 * result.half_side * ly.dbu, result.half_side * ly.dbu), 20000)
         farthest_of_selection.last = result

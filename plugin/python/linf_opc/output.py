@@ -1,24 +1,11 @@
-"""Writing a Diagram: CSV in micrometres, layout layers, summary JSON."""
-import csv
+"""What the stages' writers share: result layouts written by the core, layouts saved by
+KLayout, the core's GDSII drawings copied into a layout, summary JSON."""
 import json
 
 import pya
 
 from . import core
-from .diagram import KINDS
 from .polygons import core_input
-
-CSV_HEADER = ["kind", "x1", "y1", "x2", "y2", "d1", "d2",
-              "a_x1", "a_y1", "a_x2", "a_y2", "b_x1", "b_y1", "b_x2", "b_y2"]
-
-# Diagram layers sit on the input's layer number, datatypes 200 + kind index, so that they
-# sort next to the input in the layer list and never collide with drawn datatypes.
-DATATYPE_BASE = 200
-
-
-def diagram_layer_info(layer, datatype, kind):
-    return pya.LayerInfo(layer, DATATYPE_BASE + KINDS.index(kind), "voronoi_%s (%d/%d)" % (kind, layer, datatype))
-
 
 # KLayout's OASIS shape compaction (regular arrays found among repeated shapes) keeps a table
 # of every shape while it writes: about 100 bytes a shape, 1 GB more at the peak on a layer of
@@ -31,8 +18,8 @@ def shape_count(layout):
 
 
 def save(layout, path):
-    """Writes a result layout (format from the file name), without shape compaction above
-    COMPACT_MAX_SHAPES shapes."""
+    """Writes a layout built in KLayout (format from the file name), without shape compaction
+    above COMPACT_MAX_SHAPES shapes."""
     opts = pya.SaveLayoutOptions()
     opts.set_format_from_filename(path)
     if shape_count(layout) > COMPACT_MAX_SHAPES:
@@ -40,91 +27,77 @@ def save(layout, path):
     layout.write(path, opts)
 
 
-def needs_core_writer(shapes):
-    """Whether a result layout of this many shapes is written by the core (write_by_core)
-    instead of being built in a KLayout Layout and saved."""
-    return shapes > COMPACT_MAX_SHAPES
-
-
 def write_by_core(path, drawing, polygons, layer, datatype, names, dbu, cell, boxes=()):
-    """A result layout as OASIS straight from the core's GDSII drawing (paths and texts; None for
-    none), boxes [(layer, datatype, array('q') x1, y1, x2, y2 a box)] and the input polygons,
-    for layouts of millions of shapes, which KLayout would hold in memory while it saved them.
+    """A result layout (voronoi.oas, gauges.oas, windows.oas) as OASIS, written by the core: the
+    input polygons, the core's GDSII drawing (paths and texts; None for none) and boxes
+    [(layer, datatype, array('q') x1, y1, x2, y2 a box)], in one top cell named `cell`. Built in
+    a KLayout layout, a layer of millions of shapes would be held in memory while it was saved.
     names: [(layer, datatype, pya.LayerInfo name)]. Returns the shape count."""
+    if drawing and not 0 <= layer <= GDS_LAYER_MAX:
+        return _write_wide_layer(path, drawing, polygons, layer, datatype, names, dbu, cell, boxes)
     return core.oasis_from_drawing(drawing or "", core_input(polygons), layer, datatype, names, dbu, cell, path,
                                    list(boxes))
 
 
-def write_csv(diagram, path, dbu):
-    """The pieces as CSV (the core's write_pieces_csv writes the same bytes, faster: batch runs
-    ask the core to write it while it holds the diagram)."""
-    if diagram.csv_path == path:
-        return
-    if diagram.pieces is None:
-        raise ValueError("the diagram was computed without its pieces: pass csv_path to diagram.compute")
-    with open(path, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(CSV_HEADER)
-        for p in diagram.pieces:
-            w.writerow([p.kind] + ["%.6f" % (v * dbu) for v in p[1:15]])
+# The core's GDSII drawings hold a layer number in 16 bits, and it reads them back signed: a
+# layer above this (OASIS and KLayout have no such limit) comes back as another number.
+GDS_LAYER_MAX = 32767
 
 
-def copy_drawing(cell, path, targets, direct=False):
-    """Puts the shapes of a GDSII file the core wrote (see drawing.py) on layer/datatype (l, d)
-    into `cell`'s layer targets[(l, d)] (an index of cell's layout): read into a layout of its
-    own and copied, an undoable insertion; or, `direct`, read straight into cell's layout,
-    which holds them once instead of twice on the way (the batch's fresh result layouts: a
-    full layer's diagram is tens of millions of shapes; the file's cell must be named as
-    `cell`, and layers are matched by layer and datatype)."""
-    layout = cell.layout()
-    if direct:
-        cells = sum(1 for _ in layout.each_cell())
-        layout.read(path)
-        if sum(1 for _ in layout.each_cell()) != cells:
-            raise ValueError("the drawing %s is not for cell %s" % (path, cell.name))
-        return
+def in_drawing(layer):
+    """The number a layer has in a GDSII drawing as KLayout reads it (16 bits, unsigned)."""
+    return layer & 0xFFFF
+
+
+def _write_wide_layer(path, drawing, polygons, layer, datatype, names, dbu, cell, boxes):
+    """write_by_core for a layer number GDSII cannot hold: the core writes the layer and the boxes,
+    KLayout adds the drawing's shapes on their real layer and writes the file again. KLayout holds
+    the result layout for this (as it would for any layout it writes)."""
+    shapes = core.oasis_from_drawing("", core_input(polygons), layer, datatype, names, dbu, cell, path, list(boxes))
+    ly = pya.Layout()
+    ly.read(path)
+    top = ly.cell(cell) or ly.create_cell(cell)
+    drawn = pya.Layout()
+    drawn.read(drawing)
+    if drawn.top_cells():
+        source = drawn.top_cell()
+        named = {(l, d): n for l, d, n in names}
+        for index in drawn.layer_indexes():
+            info = drawn.get_info(index)
+            if info.layer != in_drawing(layer) or source.shapes(index).is_empty():
+                continue
+            target = ly.find_layer(layer, info.datatype)
+            if target is None:
+                target = ly.insert_layer(pya.LayerInfo(layer, info.datatype, named.get((layer, info.datatype), "")))
+            top.shapes(target).insert(source.shapes(index))
+            shapes += source.shapes(index).size()
+    opts = pya.SaveLayoutOptions()
+    opts.format = "OASIS"
+    opts.oasis_compression_level = 0  # compaction would drop repeated shapes (gauges measuring one line)
+    ly.write(path, opts)
+    return shapes
+
+
+def read_drawing(path):
+    """A GDSII file the core wrote (see drawing.py) read into a layout of its own (editable)."""
     drawn = pya.Layout()
     drawn.read(path)
+    return drawn
+
+
+def copy_drawing(cell, path, targets, drawn=None):
+    """Puts the shapes of a GDSII file the core wrote on layer/datatype (l, d) into `cell`'s
+    layer targets[(l, d)] (an index of cell's layout): read into a layout of its own (or `drawn`,
+    that file read already by read_drawing) and copied, an undoable insertion."""
+    if drawn is None:
+        drawn = read_drawing(path)
     if not drawn.top_cells():
         return
     source = drawn.top_cell()
     for (layer, datatype), index in targets.items():
-        found = drawn.find_layer(layer, datatype)
+        found = drawn.find_layer(in_drawing(layer), datatype)  # a layer above 65535 is its low 16 bits there
         if found is not None:
             cell.shapes(index).insert(source.shapes(found))
-
-
-def add_layers(layout, cell, diagram, layer, datatype, direct=False):
-    """Draws every piece as a zero-width path on its kind's layer (cleared first, so the
-    action can be repeated), from the GDSII file the core wrote (diagram.compute with
-    draw_layer=layer; `direct`: see copy_drawing, draw_cell=cell.name). A piece shorter than the database grid rounds
-    to a point and is not drawn (the CSV keeps it). Returns {kind: number of pieces drawn}."""
-    if not diagram.gds_path:
-        raise ValueError("the diagram was computed without draw_layer: nothing to draw")
-    targets = {}
-    for kind in KINDS:
-        info = diagram_layer_info(layer, datatype, kind)
-        index = layout.find_layer(info)
-        if index is None:
-            index = layout.insert_layer(info)
-        cell.shapes(index).clear()
-        targets[(layer, DATATYPE_BASE + KINDS.index(kind))] = index
-    copy_drawing(cell, diagram.gds_path, targets, direct)
-    return {k: diagram.drawn[k] for k in KINDS}
-
-
-def summary(diagram, dbu, **extra):
-    s = {
-        "dbu": round(dbu, 12),
-        "sites": diagram.sites,
-        "pieces": diagram.n_pieces,
-        "counts": diagram.counts(),
-        "check": {k: v for k, v in diagram.check.items() if k != "messages"},
-        "seconds": diagram.seconds,
-        "tiles": diagram.tiles,
-    }
-    s.update(extra)
-    return s
 
 
 def write_json(data, path):

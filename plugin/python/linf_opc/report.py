@@ -1,8 +1,11 @@
 """A self-contained HTML report of a selection study: the thesis's tables, SVG plots of
-coverage, useful gauges and runtime against window size (Figures 5.17-5.19), and a picture of
-the layout with the chosen windows. No network resources."""
+coverage, useful gauges and runtime against window size (Figures 5.17-5.19), the gauge plan's
+cd-against-space plot and most repeated contexts, and a picture of the layout with the chosen
+windows. No network resources."""
 import base64
 import html
+
+from .progress import breathe
 
 # The layout picture is drawn as SVG up to this many polygon points, markers and windows; a
 # larger layer comes as a PNG rendered by the caller (an SVG of five million wires is a quarter
@@ -75,7 +78,8 @@ def _picture(polygons, run, markers, size=700):
     X = lambda v: (v - x0) * s
     Y = lambda v: (y1 - v) * s
     d = []
-    for outer, holes in polygons:
+    for k, (outer, holes) in enumerate(polygons):
+        breathe(k, len(polygons))
         for ring in [outer] + holes:
             d.append("M" + " L".join("%.1f %.1f" % (X(px), Y(py)) for px, py in ring) + "Z")
     out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%.0f" height="%.0f" class="layout">'
@@ -91,13 +95,77 @@ def _picture(polygons, run, markers, size=700):
     return "\n".join(out)
 
 
+PLAN_COLOURS = (("layer", "#bbbbbb", 3), ("calibration", "#1f77b4", 5), ("verification", "#d62728", 4))
+
+
+def _scatter(title, xlabel, ylabel, series):
+    """A scatter plot: series [(name, colour, mark size, [(x, y)])], drawn in that order; points
+    falling on one pixel are drawn once (a layer has a representative per context)."""
+    w, h, l, b = 520, 380, 64, 44
+    pts = [p for _, _, _, ps in series for p in ps]
+    x0, x1 = (min(p[0] for p in pts), max(p[0] for p in pts)) if pts else (0, 1)
+    y0, y1 = (min(p[1] for p in pts), max(p[1] for p in pts)) if pts else (0, 1)
+    x1, y1 = (x1 if x1 > x0 else x0 + 1), (y1 if y1 > y0 else y0 + 1)
+    X = lambda v: l + (w - l - 20) * (v - x0) / (x1 - x0)
+    Y = lambda v: h - b - (h - b - 24) * (v - y0) / (y1 - y0)
+    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" class="plot">' % (w, h),
+           '<text x="%d" y="14" font-weight="bold">%s</text>' % (l, html.escape(title)),
+           '<line x1="%d" y1="%d" x2="%d" y2="%d" stroke="black"/>' % (l, h - b, w - 10, h - b),
+           '<line x1="%d" y1="20" x2="%d" y2="%d" stroke="black"/>' % (l, l, h - b),
+           '<text x="%d" y="%d" font-size="11" text-anchor="middle">%s</text>' % ((l + w) / 2, h - 6, html.escape(xlabel)),
+           '<text x="12" y="%d" font-size="11" transform="rotate(-90 12 %d)" text-anchor="middle">%s</text>'
+           % (h / 2, h / 2, html.escape(ylabel))]
+    for v in (x0, x1):
+        out.append('<text x="%.0f" y="%d" font-size="10" text-anchor="middle">%.4g</text>' % (X(v), h - b + 14, v))
+    for v in (y0, y1):
+        out.append('<text x="%d" y="%.0f" font-size="10" text-anchor="end">%.4g</text>' % (l - 4, Y(v) + 4, v))
+    for j, (name, colour, size, ps) in enumerate(series):
+        seen = sorted(set((round(X(x)), round(Y(y))) for x, y in ps))
+        out.append('<g fill="%s">%s</g>' % (colour, "".join(
+            '<rect x="%d" y="%d" width="%d" height="%d"/>' % (px - size // 2, py - size // 2, size, size)
+            for px, py in seen)))
+        out.append('<text x="%d" y="%d" fill="%s" font-size="11">%s (%d)</text>'
+                   % (w - 150, 30 + 14 * j, colour, html.escape(name), len(ps)))
+    out.append("</svg>")
+    return "\n".join(out)
+
+
+def plan_section(plan, dbu):
+    """The plan's part of the report: cd against neighbouring space of the layer's contexts and
+    of the two sets, and the most repeated contexts."""
+    s = plan.summary(dbu)
+    points = plan.points(dbu)
+    p = s["parameters"]
+    parts = ["<h2>Gauge plan</h2>",
+             "<p>%d gauges in %d contexts (type and the layer within %.4g &micro;m of the gauge, up to the square's "
+             "symmetries); calibration %d gauges (%d contexts, %.1f%% of all gauges), verification %d (%d contexts, "
+             "%.1f%%); budget %d, verify %d.</p>"
+             % (s["layer"]["gauges"], s["layer"]["contexts"], p["context_radius_um"], s["counts"]["calibration"],
+                s["sets"]["calibration"]["contexts"], 100 * s["sets"]["calibration"]["share_of_gauges"],
+                s["counts"]["verification"], s["sets"]["verification"]["contexts"],
+                100 * s["sets"]["verification"]["share_of_gauges"], p["budget"], p["verify"]),
+             _scatter("cd against neighbouring space (um)", "cd (um)",
+                      "space: least cd of the other kind within the radius (um)",
+                      [(name, colour, size, points[name]) for name, colour, size in PLAN_COLOURS]),
+             "<p>A width gauge's space is the least external cd within the context radius, an external gauge's "
+             "the least internal cd there; %d contexts have none and are not drawn.</p>"
+             % s["layer"]["contexts_without_space"],
+             "<h2>Most repeated contexts</h2>",
+             _table(["context", "type", "cd (um)", "score (um)", "count", "rank", "in"],
+                    [[c["context"], c["type"], c["cd_um"], c["score_um"], c["count"], c["rank"],
+                      ", ".join(c["in"]) or "-"] for c in s["top_contexts"]])]
+    return "\n".join(parts)
+
+
 def _png_picture(png):
     return '<img class="layout" alt="the layout with the windows" src="data:image/png;base64,%s"/>' % (
         base64.b64encode(png).decode("ascii"))
 
 
-def write(path, title, stats, study, polygons, dbu, png=None):
-    """png: the layout picture as PNG bytes, for a layer too large for SVG (svg_picture_fits)."""
+def write(path, title, stats, study, polygons, dbu, png=None, plan=None, extra=None):
+    """png: the layout picture as PNG bytes, for a layer too large for SVG (svg_picture_fits);
+    plan: the split's plan.Plan, shown before the picture; extra: an HTML fragment shown before
+    the picture too (the printability pictures, litho_report.py)."""
     sizes = sorted(study.heuristic)
     modes = sorted(set(m for m, k in study.runs))
     cov = {m: [study.runs[(m, k)].covered if (m, k) in study.runs else None for k in sizes] for m in modes}
@@ -111,6 +179,18 @@ def write(path, title, stats, study, polygons, dbu, png=None):
              "<p>Pitch %.4g &micro;m; %d markers; %d gauges ranked. Windows are k&times;k pitches centred on "
              "gauges in rank order; a window is kept if it covers a marker not yet covered.</p>"
              % (stats["pitch_um"], stats["markers"], stats.get("gauges", 0))]
+    pats = stats.get("pattern_classes")
+    if pats:
+        rule = ("XOR area at most %g%% of the window" % (100 * pats["area_fraction"]) if pats["rule"] == "area"
+                else "edges moved by at most %g &micro;m" % pats["edge_um"])
+        parts.append("<h2>Pattern classes</h2><p>The %d windows of mode %s %d&times;%d are <b>%d patterns</b>: "
+                     "windows whose clips match under a rotation or mirror (%s) are one class, represented by its "
+                     "most critical window (<code>pattern_classes.csv</code>; each window's class in "
+                     "<code>windows.csv</code>). The largest:</p>"
+                     % (pats["windows"], chosen.mode, chosen.size, chosen.size, pats["classes"], rule))
+        parts.append(_table(["class", "windows", "markers covered", "representative window"],
+                            [[c["class"], c["windows"], c["markers"], c["representative_window"]]
+                             for c in pats["largest"]]))
     head = ["mode", "W_s", "side (um)", "M_c", "G_u", "r_u", "G_f", "r_f", "redundant", "P_d (%)", "u_g (%)", "T (s)"]
     for m in modes:
         parts.append("<h2>Coverage, mode %s</h2>" % m)
@@ -144,6 +224,10 @@ def write(path, title, stats, study, polygons, dbu, png=None):
         parts.append("<h2>Similarity of the two halves (split at x = %.4g &micro;m)</h2>" % s["x_split_um"])
         parts.append(_table(["type", "S_n", "N_g^1", "N_g^2"], [[c[0], c[1], c[2], c[3]] for c in s["classes"]]))
         parts.append("<p>N_t^1 = %d, N_t^2 = %d, S_12 = %.2f%%</p>" % (s["N_t1"], s["N_t2"], s["S_12"]))
+    if plan is not None:
+        parts.append(plan_section(plan, dbu))
+    if extra:
+        parts.append(extra)
     parts.append("<h2>Layout with the windows (%s)</h2>" % key)
     parts.append(_png_picture(png) if png is not None else _picture(polygons, chosen, study.markers))
     parts.append("</body></html>")

@@ -1,14 +1,21 @@
-"""Writing a selection Study: windows.csv, a windows layer, report-database items, stats.json."""
+"""Writing a selection Study: windows.csv, windows.oas, the windows layer in the editor's
+layout, the report database's items, stats.json, report.html."""
 import csv
+import os
 import re
 import shutil
 import tempfile
+import time
 from array import array
 from xml.sax import saxutils
 
 import pya
 
+from . import output
+from . import picture as layout_picture
+from . import report as html_report
 from . import report_db
+from .progress import breathe
 from .selection import MODE_NAMES
 
 CSV_HEADER = ["id", "x1", "y1", "x2", "y2", "gauge_id", "type", "score", "markers_covered"]
@@ -21,21 +28,42 @@ def window_layer_info(layer, datatype, run):
     return pya.LayerInfo(layer, DATATYPE, "windows %s %dx%d (%d/%d)" % (run.mode, run.size, run.size, layer, datatype))
 
 
-def write_csv(run, gauges, path, dbu):
+def write_csv(run, gauges, path, dbu, classes=None):
     """One row per kept window, in gauge order; gauge_id is the gauge's rank in gauges.csv;
-    markers_covered counts the markers this window covers first."""
+    markers_covered counts the markers this window covers first; pattern_class (with classes) is
+    the window's class in pattern_classes.csv."""
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(CSV_HEADER)
+        w.writerow(CSV_HEADER + (["pattern_class"] if classes else []))
         for i, (x1, y1, x2, y2, gi, ms) in enumerate(run.windows):
             g = gauges[gi]
             w.writerow([i + 1] + ["%.6f" % (v * dbu) for v in (x1, y1, x2, y2)] +
-                       [g.rank, g.type, "%.6f" % (g.score * dbu), len(ms)])
+                       [g.rank, g.type, "%.6f" % (g.score * dbu), len(ms)] +
+                       ([classes.of_window[i] + 1] if classes else []))
+
+
+CLASSES_HEADER = ["class", "windows", "markers_covered", "representative", "x1", "y1", "x2", "y2", "gauge_id",
+                   "type", "score"]
+
+
+def write_classes_csv(classes, run, gauges, path, dbu):
+    """One row per pattern class, in order of creation (its representative's gauge order): its windows,
+    the markers they cover first, and the representative window (its id in windows.csv, its box
+    and gauge)."""
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(CLASSES_HEADER)
+        for k in range(len(classes)):
+            r = classes.representative[k]
+            x1, y1, x2, y2, gi, _ = run.windows[r]
+            g = gauges[gi]
+            w.writerow([k + 1, classes.count[k], classes.markers[k], r + 1] +
+                       ["%.6f" % (v * dbu) for v in (x1, y1, x2, y2)] + [g.rank, g.type, "%.6f" % (g.score * dbu)])
 
 
 def window_boxes(run, dbu):
     """The run's windows on the DBU grid, as add_layer puts them into a layout: array('q')
-    x1, y1, x2, y2 a window."""
+    x1, y1, x2, y2 a window (windows.oas)."""
     out = array("q")
     for x1, y1, x2, y2, gi, ms in run.windows:
         b = pya.DBox(x1 * dbu, y1 * dbu, x2 * dbu, y2 * dbu).to_itype(dbu)
@@ -116,6 +144,7 @@ def _write_report(path, items, study, gauges, dbu, cell_name, source, generator,
     cell = esc(cell_name)
 
     def item(tags, category, values):
+        breathe()
         for t in tags:
             if t not in plain:
                 plain.append(t)
@@ -152,13 +181,14 @@ def _write_report(path, items, study, gauges, dbu, cell_name, source, generator,
         for b in markers.boxes:
             item([], "markers", [box(*b)])
     if split is not None:
-        user += ["norm_score", "set"]
+        user += ["norm_score", "set", "cd", "count"]
         cats.append(category("split", "calibration / verification split (%s)" % split.mode))
         for pt, which in zip(split.patterns, split.assign):
             g = pt.gauge
             item([which], "split", [box(*pt.box), "[#gauge_rank] float: %s" % _g(g.rank), "[#type] text: %s" % g.type,
                                     "[#score] float: %s" % _g(g.score * dbu),
-                                    "[#norm_score] float: %s" % _g(g.norm_score), "[#set] text: %s" % which])
+                                    "[#norm_score] float: %s" % _g(g.norm_score), "[#set] text: %s" % which]
+                 + ["[#%s] text: %s" % (k, esc(_quoted(v))) for k, v in split_readings(split, pt, dbu)])
     tags = user[:4] + [t for t in plain if t.startswith(("mode_", "size_"))] + user[4:] + \
         [t for t in plain if not t.startswith(("mode_", "size_"))]
     with open(path, "w", encoding="utf-8") as f:
@@ -189,21 +219,80 @@ def stats(study, dbu, chosen, similarity=None):
     return out
 
 
+def split_readings(split, p, dbu):
+    """A split pattern's values for reading, as text: (("cd", "16 nm"),) and, for the plan,
+    ("count", "2,400"): the layer's gauges of its gauge's type and context."""
+    out = (("cd", "%.4g nm" % (p.gauge.cd * dbu * 1000)),)
+    contexts = getattr(split, "contexts", None)
+    if contexts is not None:
+        out += (("count", format(contexts.count[contexts.key(p.index)], ",")),)
+    return out
+
+
+def _quoted(text):
+    """A text value as KLayout writes it (tl::to_quoted_string)."""
+    return "'%s'" % text.replace("\\", "\\\\").replace("'", "\\'")
+
+
 def report_split(split, dbu, cell_name, rdb):
     """Category "split" with every pattern (its window, µm) tagged "calibration" or
-    "verification", with the named values gauge_rank, type, score, norm_score and set."""
+    "verification", with the named values gauge_rank, type, score, norm_score, set and, as text
+    for reading, cd in nm and (the plan) count."""
     rcell = rdb.cell_by_qname(cell_name) or rdb.create_cell(cell_name)
     cat = rdb.create_category("split")
     cat.description = "calibration / verification split (%s)" % split.mode
-    tags = {k: rdb.user_tag_id(k) for k in ("gauge_rank", "type", "score", "norm_score", "set")}
+    tags = {k: rdb.user_tag_id(k) for k in ("gauge_rank", "type", "score", "norm_score", "set", "cd", "count")}
     for p, which in zip(split.patterns, split.assign):
         g = p.gauge
         item = rdb.create_item(rcell.rdb_id(), cat.rdb_id())
         x1, y1, x2, y2 = p.box
         item.add_value(pya.DBox(x1 * dbu, y1 * dbu, x2 * dbu, y2 * dbu))
         for k, v in (("gauge_rank", float(g.rank)), ("type", g.type), ("score", g.score * dbu),
-                     ("norm_score", g.norm_score), ("set", which)):
+                     ("norm_score", g.norm_score), ("set", which)) + split_readings(split, p, dbu):
             value = pya.RdbItemValue(v)
             value.tag_id = tags[k]
             item.add_value(value)
         item.add_tag(rdb.tag_id(which))
+
+
+def write_selection(inp, sel, split=None):
+    """windows.csv, windows.oas (the core), stats.json, report.html of the Input `inp` and the
+    flow's Selected `sel` (the report database: write_windows_report); report.html shows the
+    split too when it is a plan. Returns the stats."""
+    t0 = time.perf_counter()
+    classes = getattr(sel, "classes", None)
+    write_csv(sel.chosen, sel.gauges, inp.file("windows.csv"), inp.dbu, classes)
+    if classes:
+        write_classes_csv(classes, sel.chosen, sel.gauges, inp.file("pattern_classes.csv"), inp.dbu)
+    info = window_layer_info(inp.layer, inp.datatype, sel.chosen)
+    output.write_by_core(inp.file("windows.oas"), None, inp.polygons, inp.layer, inp.datatype,
+                         [(info.layer, info.datatype, info.name)], inp.dbu, inp.cell.name,
+                         [(info.layer, info.datatype, window_boxes(sel.chosen, inp.dbu))])
+    st = stats(sel.study, inp.dbu, sel.chosen, sel.similarity)
+    st.update(input=inp.path, cell=inp.cell.name, layer=inp.name, gauges=len(sel.gauges), max_norm=sel.max_norm,
+              marker_source=sel.markers.summary(), pitch_source="given" if sel.pitch_given else "estimated")
+    st["seconds"].update(read=inp.t_read, gauges=sel.result.seconds["total"], halves=sel.t_halves)
+    if classes:
+        st["pattern_classes"] = classes.summary()
+    chosen = sel.study.runs[(st["chosen"]["mode"], st["chosen"]["size"])]
+    png = None
+    if not html_report.svg_picture_fits(inp.polygons, chosen, sel.study.markers):
+        png = layout_picture.picture(inp.polygons, inp.dbu, sel.study.markers, chosen.windows)
+    plan = split if getattr(split, "mode", None) == "plan" else None
+    extra = None
+    if getattr(sel.result, "litho_model", None) is not None:  # -rd litho: the printed contours of the top contexts
+        from . import litho_report
+        table = sel.result.gauges
+        extra = litho_report.section(table, inp.region, inp.polygons, inp.dbu, sel.result.litho_model,
+                                     sel.result.litho_threshold, litho_report.rows_to_draw(table, plan))
+    html_report.write(inp.file("report.html"), "Pattern selection: %s %s" % (os.path.basename(inp.path), inp.name),
+                      st, sel.study, inp.polygons, inp.dbu, png, plan, extra)
+    st["seconds"]["write"] = time.perf_counter() - t0
+    output.write_json(st, inp.file("stats.json"))
+    return st
+
+
+def write_windows_report(inp, sel, split, generator, path):
+    """The selection's (and the split's, if given) report database: every run's windows, the
+    markers, the split's patterns."""
+    write_report(path, sel.study, sel.gauges, inp.dbu, inp.cell.name, inp.path, generator, sel.markers, split)

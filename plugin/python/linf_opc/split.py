@@ -8,7 +8,8 @@ out: Split: patterns (window, gauge, markers inside), each assigned to "calibrat
 The patterns are the selection's windows (each covers a marker first) and, so that
 calibration has material, the windows of the failed gauges (critical spots whose window shows
 no marker) that overlap no other pattern, taken in rank order. The rules of the two modes are
-in the README ("Calibration and verification").
+in docs/design.md, "Split rules". The split's default mode, the budgeted gauge plan, is plan.py
+(a Split too).
 """
 import random
 from array import array
@@ -65,24 +66,32 @@ class Patterns(Records):
         return self._covers
 
 
-def patterns_of(run, gauges, markers):
-    """The selection's windows, then the failed gauges' windows that overlap no pattern."""
-    side = run.side
-    buckets = {}  # marker indices by grid cell of the window side, for "the markers inside"
-    for k, m in enumerate(markers):
-        for i in range(int(m[0] // side), int(m[2] // side) + 1):
-            for j in range(int(m[1] // side), int(m[3] // side) + 1):
-                buckets.setdefault((i, j), []).append(k)
+class MarkerGrid:
+    """The markers on a grid of the window side, for "the markers inside" a window."""
 
-    def markers_in(b):
-        # By value, one index per distinct box, in the boxes' order (equal boxes are one marker).
-        found = {}
+    def __init__(self, markers, side):
+        self.markers, self.side = markers, side
+        self.buckets = {}  # marker indices by grid cell
+        for k, m in enumerate(markers):
+            for i in range(int(m[0] // side), int(m[2] // side) + 1):
+                for j in range(int(m[1] // side), int(m[3] // side) + 1):
+                    self.buckets.setdefault((i, j), []).append(k)
+
+    def inside(self, b):
+        """The markers meeting box b: by value, one index per distinct box, in the boxes' order
+        (equal boxes are one marker)."""
+        found, side, markers = {}, self.side, self.markers
         for i in range(int(b[0] // side) - 1, int(b[2] // side) + 2):
             for j in range(int(b[1] // side) - 1, int(b[3] // side) + 2):
-                for k in buckets.get((i, j), ()):
+                for k in self.buckets.get((i, j), ()):
                     found.setdefault(tuple(markers[k]), k)
         return [k for m, k in sorted(found.items()) if m[0] <= b[2] and m[2] >= b[0] and m[1] <= b[3] and m[3] >= b[1]]
 
+
+def patterns_of(run, gauges, markers):
+    """The selection's windows, then the failed gauges' windows that overlap no pattern."""
+    side = run.side
+    markers_in = MarkerGrid(markers, side).inside
     out = Patterns(gauges, markers)
     for x1, y1, x2, y2, gi, ms in run.windows:
         out.append((x1, y1, x2, y2), gi, markers_in((x1, y1, x2, y2)), True)
@@ -145,12 +154,18 @@ class Split:
         }
 
 
-def by_threshold(patterns, threshold=0.1, bin_width=0.01):
-    """Verification: patterns covering a marker, or whose gauge's normalised score is at or
-    below `threshold` (fault-prone); calibration: the rest."""
-    assign = ["verification" if p.covers_marker or p.gauge.norm_score <= threshold + 1e-12 else "calibration"
-              for p in patterns]
-    return Split("threshold", {"threshold": threshold, "bin": bin_width}, patterns, assign, bin_width)
+def by_threshold(patterns, threshold=0.1, bin_width=0.01, fails=None):
+    """Verification: patterns covering a marker, or whose gauge is fault-prone: its normalised
+    score at or below `threshold` or, with `fails` (pattern -> 0 none, 1 pinch, 2 bridge: the
+    lithography model's reading), its gauge pinching or bridging; calibration: the rest."""
+    if fails is None:
+        faulty = lambda p: p.gauge.norm_score <= threshold + 1e-12  # noqa: E731
+        params = {"threshold": threshold, "bin": bin_width}
+    else:
+        faulty = lambda p: fails(p) != 0  # noqa: E731
+        params = {"separator": "fails", "bin": bin_width}
+    assign = ["verification" if p.covers_marker or faulty(p) else "calibration" for p in patterns]
+    return Split("threshold", params, patterns, assign, bin_width)
 
 
 def stratified(patterns, fraction=0.3, seed=1, bin_width=0.01):

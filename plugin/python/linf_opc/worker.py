@@ -22,6 +22,7 @@ import time
 
 from . import core
 
+PACKAGE_PARENT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # for linf_opc.cluster
 PYTHON = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable
 
 CHILD = r"""
@@ -35,8 +36,18 @@ if fault == "hang":
     time.sleep(3600)
 import linf_opc_core as core
 name, args, kwargs = pickle.load(sys.stdin.buffer)
+scheduler = kwargs.pop("scheduler", None)
 try:
-    result = ("ok", getattr(core, name)(*args, **kwargs))
+    if scheduler:  # the tiles on a Dask cluster (cluster.py): this process is its client
+        sys.path.insert(0, sys.argv[2])
+        from linf_opc import cluster
+        try:
+            kwargs["tiles"] = cluster.Tiles(cluster.connect(scheduler))
+            result = ("ok", getattr(core, name)(*args, **kwargs))
+        except cluster.ClusterError as e:
+            result = ("ClusterError", str(e))
+    else:
+        result = ("ok", getattr(core, name)(*args, **kwargs))
 except core.DiagramError as e:
     result = ("DiagramError", str(e))
 except ValueError as e:
@@ -101,7 +112,7 @@ class Runner:
         # Output and messages go to files, not pipes: a pipe the parent does not drain while it
         # waits would block the child.
         with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
-            with subprocess.Popen([PYTHON, "-c", CHILD, core.MODULE_DIR], stdin=subprocess.PIPE, stdout=out,
+            with subprocess.Popen([PYTHON, "-c", CHILD, core.MODULE_DIR, PACKAGE_PARENT], stdin=subprocess.PIPE, stdout=out,
                                   stderr=err, preexec_fn=_limits) as child:
                 self._watch(child, payload, name)
             err.seek(0)
@@ -121,6 +132,9 @@ class Runner:
             raise core.DiagramError(value)
         if status == "ValueError":
             raise ValueError(value)
+        if status == "ClusterError":
+            from .arguments import UsageError
+            raise UsageError(value)
         raise WorkerError(self._saved("failed: " + value, payload, name))
 
     def _watch(self, child, payload, name):

@@ -1,0 +1,240 @@
+# The diagram's tiles on a Dask cluster against one local thread, on the scale benchmark's
+# generated wires (bench/flow_one.py's generator, here without KLayout), with what a cost model
+# needs: per-tile times on the workers, the submitting host's own share per tile, the bytes
+# moved, the scheduler's overhead per task, and each worker's peak memory.
+#   python3 bench/bench_dask.py [--wires 100000] [--workers 2] [--tile -1] [--overhead-tasks 2000]
+# Starts a dask-scheduler and --workers dask-workers (--nthreads 1) on 127.0.0.1 and stops them.
+# Both runs build the gauges (diagram + gauges, as cmd=gauges without its writers) with one
+# thread on the submitting host; the cluster's run must give the same voronoi.csv and gauges.csv
+# bytes. Prints a JSON line and a Markdown table.
+import array
+import json
+import os
+import platform
+import random
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+
+repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(repo, "build"))
+sys.path.insert(0, os.path.join(repo, "plugin", "python"))
+import linf_opc_core as core  # noqa: E402
+
+args = sys.argv[1:]
+
+
+def opt(name, default):
+    return args[args.index(name) + 1] if name in args else default
+
+
+def wires(n, seed=1):
+    """bench/flow_one.py's generated block: horizontal tracks on a 100 DBU pitch, wires 50 DBU
+    wide of random length (150-1500) with random gaps (50-600), as the core's flat arrays."""
+    rng = random.Random(seed)
+    tracks = max(1, int((11.5 * n) ** 0.5))
+    length, count = 100 * tracks, 0
+    pts, rings = array.array("q"), array.array("q")
+    for k in range(tracks):
+        x = rng.randrange(0, 400)
+        while x < length and count < n:
+            w = rng.randrange(150, 1500)
+            y = k * 100
+            pts.extend((x, y, x + w, y, x + w, y + 50, x, y + 50))
+            rings.append(4)
+            count += 1
+            x += w + rng.randrange(50, 600)
+    return (pts, rings), count
+
+
+def free_port():
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    p = s.getsockname()[1]
+    s.close()
+    return p
+
+
+def build(polys, out, tiles=None):
+    t0 = time.perf_counter()
+    r = core.gauges_polygons(polys, True, 2000, 1, tile=tile, csv=os.path.join(out, "voronoi.csv"), dbu=0.001,
+                             gauges_csv=os.path.join(out, "gauges.csv"), tiles=tiles)
+    return r, time.perf_counter() - t0
+
+
+def same(a, b, name):
+    with open(os.path.join(a, name), "rb") as f, open(os.path.join(b, name), "rb") as g:
+        return f.read() == g.read()
+
+
+class Measured:
+    """cluster.Tiles with the submitting host's share timed: next (planning a tile, gathering
+    its halo, encoding), done (decoding, classifying, spilling, the stretches), the bytes."""
+
+    def __init__(self, tiles):
+        self.tiles = tiles
+        self.next_s = self.done_s = 0.0
+        self.sent = self.received = self.jobs = 0
+        self.largest_job = 0
+
+    def __call__(self, next_job, done):
+        def timed_next():
+            t = time.perf_counter()
+            job = next_job()
+            self.next_s += time.perf_counter() - t
+            if job is not None:
+                self.sent += len(job)
+                self.jobs += 1
+                self.largest_job = max(self.largest_job, len(job))
+            return job
+
+        def timed_done(result):
+            t = time.perf_counter()
+            self.received += len(result)
+            done(result)
+            self.done_s += time.perf_counter() - t
+
+        t0 = time.perf_counter()
+        self.tiles(timed_next, timed_done)
+        self.phase_s = time.perf_counter() - t0
+
+
+def noop(x):
+    return x
+
+
+# Cost model assumptions (stated in docs/benchmarks.md): a farm's network moves 1 GB/s to and from
+# the submitting host (10 GbE, shared by every task), 0.5 ms latency a message; every term
+# scales linearly with the layer's sites (tiles of 2^15 own sites: their count grows with the
+# layer, their size does not); the scheduler handles tasks one after the other.
+BANDWIDTH = 1e9
+LATENCY = 0.5e-3
+TARGET = 5e7
+
+
+def project(r, tiles):
+    """Wall time of the gauges stage for TARGET wires on W single-thread workers: the tile phase
+    is bounded by the slowest of the workers' share, the submitting host's per-tile work, the
+    scheduler's per-task overhead and the network; then the host's serial rest."""
+    k = TARGET / r["wires"]
+    n_tiles = tiles * k
+    compute = r["tile_compute_sum_s"] * k
+    host = (r["host_next_s"] + r["host_done_s"]) * k
+    sched = n_tiles * r["overhead_per_task_batch_ms"] / 1000
+    net = (r["bytes_sent"] + r["bytes_received"]) * k / BANDWIDTH + n_tiles * 2 * LATENCY
+    serial = r["host_after_tiles_s"] * k
+    out = {"tiles": round(n_tiles), "host_serial_s": serial, "host_per_tile_total_s": host,
+           "scheduler_total_s": sched, "network_total_s": net}
+    for w in (64, 256):
+        phase = max(compute / w + r["tile_compute_max_s"], host, sched, net)
+        out["workers_%d_s" % w] = phase + serial
+    out["one_thread_s"] = r["local_seconds"] * k
+    return out
+
+
+n_wires = int(opt("--wires", "100000"))
+n_workers = int(opt("--workers", "2"))
+tile = float(opt("--tile", "-1"))
+n_overhead = int(opt("--overhead-tasks", "2000"))
+work = tempfile.mkdtemp(prefix="linf_bench_dask_")
+procs = []
+try:
+    import distributed
+    from distributed import get_task_stream
+    from linf_opc import cluster
+
+    polys, n = wires(n_wires)
+    local_dir, dask_dir = os.path.join(work, "local"), os.path.join(work, "dask")
+    os.makedirs(local_dir)
+    os.makedirs(dask_dir)
+    r_local, t_local = build(polys, local_dir)
+    print("local, one thread: %.2f s (diagram build %.2f s)" % (t_local, r_local["diagram"]["seconds"]["build"]),
+          file=sys.stderr)
+
+    port = free_port()
+    address = "tcp://127.0.0.1:%d" % port
+    log = open(os.path.join(work, "cluster.log"), "w")
+    procs.append(subprocess.Popen(["dask-scheduler", "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+                                  stdout=log, stderr=log, start_new_session=True))
+    env = dict(os.environ, PYTHONPATH=os.path.join(repo, "build"))
+    for k in range(n_workers):
+        procs.append(subprocess.Popen(["dask-worker", address, "--nthreads", "1", "--nworkers", "1", "--no-dashboard",
+                                       "--memory-limit", "0", "--local-directory", os.path.join(work, "w%d" % k)],
+                                      stdout=log, stderr=log, env=env, start_new_session=True))
+    client = distributed.Client(address, timeout=60, set_as_default=False)  # retries while it starts
+    client.wait_for_workers(n_workers, timeout=120)
+
+    # Scheduler overhead: trivial tasks, submitted all at once and one after the other.
+    t0 = time.perf_counter()
+    client.gather(client.map(noop, range(n_overhead), pure=False))
+    per_task_batch = (time.perf_counter() - t0) / n_overhead
+    t0 = time.perf_counter()
+    for i in range(200):
+        client.submit(noop, i, pure=False).result()
+    round_trip = (time.perf_counter() - t0) / 200
+
+    tiles = Measured(cluster.Tiles(client))
+    with get_task_stream(client) as ts:
+        r_dask, t_dask = build(polys, dask_dir, tiles)
+    spans = [(s["stop"] - s["start"]) for t in ts.data if t["key"].startswith("linf-tile")
+             for s in t["startstops"] if s["action"] == "compute"]
+    peak = client.run(lambda: __import__("resource").getrusage(__import__("resource").RUSAGE_SELF).ru_maxrss)
+    client.close()
+    # The local run again, after: on a shared machine the load drifts; the faster of the two
+    # counts (the speed-up is the smaller for it).
+    _, t_local_after = build(polys, local_dir)
+    t_local_first, t_local = t_local, min(t_local, t_local_after)
+
+    d_local, d_dask = r_local["diagram"], r_dask["diagram"]
+    result = {
+        "wires": n, "sites": d_local["sites"], "workers": n_workers,
+        "tiles": d_dask["tiles"], "jobs": tiles.jobs,
+        "local_seconds": t_local, "local_runs_seconds": [t_local_first, t_local_after], "dask_seconds": t_dask, "speedup": t_local / t_dask,
+        "local_build_seconds": d_local["seconds"]["build"], "dask_build_seconds": d_dask["seconds"]["build"],
+        "same_voronoi_csv": same(local_dir, dask_dir, "voronoi.csv"),
+        "same_gauges_csv": same(local_dir, dask_dir, "gauges.csv"),
+        "tile_compute_sum_s": sum(spans), "tile_compute_max_s": max(spans) if spans else 0,
+        "tile_compute_mean_s": sum(spans) / len(spans) if spans else 0,
+        "host_next_s": tiles.next_s, "host_done_s": tiles.done_s, "tile_phase_s": tiles.phase_s,
+        "host_after_tiles_s": t_dask - tiles.phase_s,
+        "bytes_sent": tiles.sent, "bytes_received": tiles.received, "largest_job_bytes": tiles.largest_job,
+        "overhead_per_task_batch_ms": 1000 * per_task_batch, "round_trip_ms": 1000 * round_trip,
+        "worker_peak_rss_mb": sorted(v / 1024 for v in peak.values()),
+        "machine": "%s, %d cores, Python %s" % (platform.processor() or platform.machine(), os.cpu_count(),
+                                                  platform.python_version()),
+        "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+    }
+    result["projection"] = project(result, d_dask["tiles"]["tiles"])
+    print(json.dumps(result))
+    print("| wires | sites | tiles | local, 1 thread | 2 workers x 1 thread + host 1 thread | speed-up | same files | "
+          "tile compute sum / mean / max | host per tile (plan+gather / classify+spill) | host after tiles | "
+          "sent / received | task overhead (batch / round trip) | worker peak RSS |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| %d | %d | %d | %.1f s | %.1f s | %.2f× | %s | %.1f / %.3f / %.3f s | %.1f / %.1f ms | %.1f s | "
+          "%.1f / %.1f MB | %.2f / %.2f ms | %s MB |"
+          % (n, d_local["sites"], d_dask["tiles"]["tiles"], t_local, t_dask, t_local / t_dask,
+             "yes" if result["same_voronoi_csv"] and result["same_gauges_csv"] else "NO",
+             result["tile_compute_sum_s"], result["tile_compute_mean_s"], result["tile_compute_max_s"],
+             1000 * tiles.next_s / max(1, tiles.jobs), 1000 * tiles.done_s / max(1, tiles.jobs),
+             result["host_after_tiles_s"], tiles.sent / 1e6, tiles.received / 1e6,
+             result["overhead_per_task_batch_ms"], result["round_trip_ms"],
+             ", ".join("%.0f" % v for v in result["worker_peak_rss_mb"])))
+    pr = result["projection"]
+    print("projection to %.0e wires (%d tiles): one thread %.0f s; 64 workers %.0f s; 256 workers %.0f s; host serial "
+          "%.0f s, host per-tile work %.0f s, scheduler %.0f s, network %.0f s"
+          % (TARGET, pr["tiles"], pr["one_thread_s"], pr["workers_64_s"], pr["workers_256_s"], pr["host_serial_s"],
+             pr["host_per_tile_total_s"], pr["scheduler_total_s"], pr["network_total_s"]))
+finally:
+    for p in procs:
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGTERM)
+    for p in procs:
+        try:
+            p.wait(10)
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGKILL)
+    import shutil
+    shutil.rmtree(work, ignore_errors=True)

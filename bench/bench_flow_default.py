@@ -1,0 +1,77 @@
+# The default `cmd=flow` against the flow with every file on request, as people run them: the
+# same batch command, the two variants alternately in one run (so that a busy machine slows both
+# alike), N runs each; best and median wall time, CPU time, bytes written, and the ratio.
+#   python3 bench/bench_flow_default.py FILE L/D MARKERS [--runs 3] [-- k=v ...]  (k=v: more -rd arguments)
+# e.g. python3 bench/bench_flow_default.py ../shared/data/iccad16/testcase3.oas 1000/0 ../shared/data/iccad16/test3.csv
+# "full" is the flow as it was before the default changed: every file (all_gauges=1, diagram=1),
+# the two-layouts experiment (halves=1) and every gauge up to 100,000 a type in the report
+# databases (rdb_max=100000, the old default). Threads: the batch's own, one builder thread per
+# core (std::thread::hardware_concurrency), the same for both variants.
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+VARIANTS = {
+    "default": [],
+    "full": ["all_gauges=1", "diagram=1", "halves=1", "rdb_max=100000"],
+}
+
+
+def cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def run_once(path, layer, markers, extra, more):
+    with tempfile.TemporaryDirectory() as out:
+        cmd = ["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py"), "-rd", "cmd=flow",
+               "-rd", "input=" + path, "-rd", "layer=" + layer, "-rd", "markers=" + markers, "-rd", "out=" + out,
+               "-rd", "quiet=1"] + [x for e in extra + more for x in ("-rd", e)]
+        c0, t0 = cpu(), time.perf_counter()
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        wall, used = time.perf_counter() - t0, cpu() - c0
+        if p.returncode != 0:
+            sys.exit("flow failed:\n%s%s" % (p.stdout, p.stderr))
+        size = sum(os.path.getsize(os.path.join(out, f)) for f in os.listdir(out))
+        return wall, used, size, len(os.listdir(out))
+
+
+def main(argv):
+    more = argv[argv.index("--") + 1:] if "--" in argv else []
+    argv = argv[:argv.index("--")] if "--" in argv else argv
+    runs = 3
+    if "--runs" in argv:
+        runs = int(argv[argv.index("--runs") + 1])
+        del argv[argv.index("--runs"):argv.index("--runs") + 2]
+    if len(argv) != 3:
+        sys.exit("usage: python3 bench/bench_flow_default.py FILE L/D MARKERS [--runs 3] [-- k=v ...]")
+    path, layer, markers = argv
+    got = {v: [] for v in VARIANTS}
+    for i in range(runs):
+        for v, extra in VARIANTS.items():
+            got[v].append(run_once(path, layer, markers, extra, more))
+            wall, used, size, n = got[v][-1]
+            print("run %d %-7s wall %7.2f s, cpu %7.2f s, %d files, %.1f MB" % (i + 1, v, wall, used, n, size / 1e6),
+                  flush=True)
+    print("flow on %s %s, %d runs each, alternately; threads: the batch's default, one a core (%d here), both"
+          % (os.path.basename(path), layer, runs, os.cpu_count()))
+    best = {}
+    for v in VARIANTS:
+        walls = [g[0] for g in got[v]]
+        cpus = [g[1] for g in got[v]]
+        best[v] = (min(walls), statistics.median(walls), min(cpus), statistics.median(cpus))
+        print("%-7s %s: wall best %.2f s, median %.2f s; cpu best %.2f s, median %.2f s; %d files, %.1f MB"
+              % (v, " ".join("-rd " + e for e in VARIANTS[v]) or "(no switch)", *best[v], got[v][0][3],
+                 got[v][0][2] / 1e6))
+    f, d = best["full"], best["default"]
+    print("full / default: wall best %.2fx, median %.2fx; cpu best %.2fx, median %.2fx"
+          % (f[0] / d[0], f[1] / d[1], f[2] / d[2], f[3] / d[3]))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

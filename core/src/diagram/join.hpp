@@ -1,0 +1,109 @@
+// Raw pieces joined per owner pair: the builder cuts every Voronoi edge at box and cell sides,
+// and the pieces of one pair that continue each other in a straight line become one. The
+// result does not depend on the order the pieces came in, nor on how they were grouped.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <vector>
+
+#include "linf/geometry/piece.hpp"
+
+// Internal linkage, as subdivision.hpp (see there).
+namespace linf::detail {
+namespace {
+
+// A total order of pieces: owner pair, then position. Workers deliver raw pieces in any
+// order, the result must not depend on it.
+inline bool piece_order(const Piece& x, const Piece& y) {
+  return std::tie(x.a, x.b, x.p.x, x.p.y, x.q.x, x.q.y) < std::tie(y.a, y.b, y.p.x, y.p.y, y.q.x, y.q.y);
+}
+
+// One owner pair's pieces [first, last), sorted by piece_order, joined where they continue
+// each other in a straight line; the runs go to `joined` in piece_order. The runs are the
+// same however the pieces came in (joined per tile or not).
+inline void join_run(const Piece* first, const Piece* last, std::vector<char>& used, std::vector<Piece>& joined) {
+  // Ends within the builder's rounding of each other meet. Its allowance (builder.cpp) is
+  // 1e-12 of the coordinates' scale and moves an end by up to a few of them (1/128 DBU near
+  // 2^30), far less than a DBU: pieces that do not meet, however far from the origin, stay apart.
+  auto close = [](const Vec2& p, const Vec2& q) {
+    return std::fabs(p.x - q.x) <= 1e-11 * (1 + std::fabs(p.x)) && std::fabs(p.y - q.y) <= 1e-11 * (1 + std::fabs(p.y));
+  };
+  auto collinear = [](const Piece& x, const Piece& y) {
+    const double ux = x.q.x - x.p.x, uy = x.q.y - x.p.y, vx = y.q.x - y.p.x, vy = y.q.y - y.p.y;
+    return std::fabs(ux * vy - uy * vx) <= 1e-9 * std::hypot(ux, uy) * std::hypot(vx, vy);
+  };
+  // Two cells can both have one Voronoi edge on their boundary (a sliver between two nearly
+  // coincident cuts): the builder then cuts out a piece, or a part of it, twice. Such
+  // collinear pieces that share more than an end are covered by one, their union; joined end
+  // to end a piece and its own copy would leave nothing of it.
+  auto inside = [](const Piece& x, const Vec2& v) {  // on x (as close), strictly between its ends
+    const double ux = x.q.x - x.p.x, uy = x.q.y - x.p.y, wx = v.x - x.p.x, wy = v.y - x.p.y;
+    const double s = wx * ux + wy * uy, ll = ux * ux + uy * uy;
+    return s > 0 && s < ll && std::fabs(wx * uy - wy * ux) <= 1e-11 * (1 + std::fabs(v.x) + std::fabs(v.y)) * std::sqrt(ll);
+  };
+  auto overlap = [&](const Piece& x, const Piece& y) {
+    const bool same = (close(x.p, y.p) && close(x.q, y.q)) || (close(x.p, y.q) && close(x.q, y.p));
+    return same || inside(x, y.p) || inside(x, y.q) || inside(y, x.p) || inside(y, x.q);
+  };
+  auto cover = [](Piece& x, const Piece& y) {  // x becomes the union of both, along x's direction
+    const double ux = x.q.x - x.p.x, uy = x.q.y - x.p.y, ll = ux * ux + uy * uy;
+    if (ll == 0) {  // x is a point (far out, rounding may put it inside y): the union is y
+      x.p = y.p, x.q = y.q, x.d1 = y.d1, x.d2 = y.d2;
+      return;
+    }
+    const double sp = (y.p.x - x.p.x) * ux + (y.p.y - x.p.y) * uy, sq = (y.q.x - x.p.x) * ux + (y.q.y - x.p.y) * uy;
+    const Vec2 lo = sp <= sq ? y.p : y.q, hi = sp <= sq ? y.q : y.p;
+    const double dlo = sp <= sq ? y.d1 : y.d2, dhi = sp <= sq ? y.d2 : y.d1;
+    if (std::min(sp, sq) < 0) x.p = lo, x.d1 = dlo;
+    if (std::max(sp, sq) > ll) x.q = hi, x.d2 = dhi;
+  };
+  const std::size_t n = std::size_t(last - first);
+  used.assign(n, 0);
+  joined.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (used[i]) continue;
+    used[i] = 1;
+    Piece cur = first[i];
+    for (bool grown = true; grown;) {
+      grown = false;
+      for (std::size_t j = 0; j < n; ++j) {
+        if (used[j] || !collinear(cur, first[j])) continue;
+        Piece o = first[j];
+        if (overlap(cur, o)) {
+          cover(cur, o);
+        } else {
+          if (close(cur.q, o.q) || close(cur.p, o.p)) std::swap(o.p, o.q), std::swap(o.d1, o.d2);
+          if (close(cur.q, o.p)) { cur.q = o.q; cur.d2 = o.d2; }
+          else if (close(cur.p, o.q)) { cur.p = o.p; cur.d1 = o.d1; }
+          else continue;
+        }
+        used[j] = 1;
+        grown = true;
+      }
+    }
+    joined.push_back(cur);
+  }
+  std::sort(joined.begin(), joined.end(), piece_order);
+}
+
+// Joins pieces of the same two owners that continue each other in a straight line, in place:
+// on a large layer the raw pieces are the builder's largest buffer, and a copy would double it.
+// Joining parts first (a tile's) and then their union gives the same maximal runs.
+inline void join_pieces(std::vector<Piece>& in) {
+  std::sort(in.begin(), in.end(), piece_order);
+  std::size_t out = 0;  // pieces written so far; always <= g0, so writing never overtakes reading
+  std::vector<char> used;
+  std::vector<Piece> joined;
+  for (std::size_t g0 = 0; g0 < in.size();) {
+    std::size_t g1 = g0;
+    while (g1 < in.size() && in[g1].a == in[g0].a && in[g1].b == in[g0].b) ++g1;
+    join_run(in.data() + g0, in.data() + g1, used, joined);
+    for (const Piece& p : joined) in[out++] = p;
+    g0 = g1;
+  }
+  in.resize(out);
+}
+
+}  // namespace
+}  // namespace linf::detail

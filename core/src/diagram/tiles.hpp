@@ -1,0 +1,30 @@
+// Tiles: the builder's pass over the sites' box, cut so that a layer of millions of shapes
+// never holds every site's distance functions at once.
+//
+// The box is cut into a fixed grid of tasks: the quadtree boxes of one level, chosen from the
+// site count only. Each task gathers the sites that can own a point of it (its halo: every site
+// within the task's least upper bound U of the distance, grown until nothing nearer is left
+// out) and is subdivided from there exactly as without tiles. Tiles are square groups of
+// tasks of the requested size; one tile's sites and distance functions are in memory at a
+// time, its tasks run on the worker threads. Since no task depends on how the tasks are
+// grouped, the pieces are bit-identical for every tile size (tested).
+#pragma once
+#include <vector>
+
+#include "util/parallel.hpp"
+#include "subdivision.hpp"
+
+namespace linf::detail {
+
+// Pieces (global site ids, joined within each tile, not across tiles) of the diagram inside
+// `root`, handed to `sink` tile by tile with the tile's box. Boxes and pieces are relative to
+// `origin` (bounds.hpp, shifted); the sites are not.
+void build_tiled(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt, double tau,
+                 BuildStats& st, const PartSink& sink);
+
+// The same parts in the same order, each tile built by `runner` from a job (tile_jobs.hpp)
+// holding only the tile's sites: planned and gathered here, built wherever the runner sends it.
+void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt,
+                      double tau, BuildStats& st, const PartSink& sink, const TileRunner& runner);
+
+}  // namespace linf::detail

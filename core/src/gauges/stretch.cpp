@@ -1,0 +1,398 @@
+#include "linf/gauges/stretch.hpp"
+
+#include "linf/geometry/distance.hpp"
+#include "linf/util/pages.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <set>
+#include <stdexcept>
+#include <tuple>
+#include <unordered_map>
+#include <utility>
+
+namespace linf {
+
+namespace {
+
+// Piece ends meet at exactly computed vertices up to rounding; a 1/1024 DBU grid joins them.
+// (A struct, not a std::pair: the held ends and point stretches live in Paged arrays, which
+// take only trivially copyable values.)
+struct Key {
+  long long x, y;
+  bool operator==(const Key& o) const { return x == o.x && y == o.y; }
+  bool operator<(const Key& o) const { return x < o.x || (x == o.x && y < o.y); }
+};
+Key key_of(const Vec2& v) { return {std::llround(v.x * 1024.0), std::llround(v.y * 1024.0)}; }
+
+struct KeyHash {
+  std::size_t operator()(const Key& k) const { return std::hash<long long>()(k.x * 1000003LL ^ k.y); }
+};
+
+double dist(const Vec2& a, const Vec2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+// A piece's clearance is convex along it but not always linear: between two points on a
+// diagonal the L-inf bisector dips from both ends to the middle. Convexity means the midpoint
+// test finds every such dip; the dip's bottom is found by ternary search and becomes a path
+// point, so that the path's linear profile holds the true minimum.
+void refine(const Site& owner, const Vec2& u, const Vec2& v, double du, double dv, int depth, Stretches& out) {
+  auto at = [&](double t) { return Vec2{u.x + t * (v.x - u.x), u.y + t * (v.y - u.y)}; };
+  auto f = [&](double t) {
+    const Vec2 p = at(t);
+    return dist_site(p.x, p.y, owner);
+  };
+  const double tol = 1e-7 * (1.0 + std::max(du, dv));
+  if (depth > 0 && f(0.5) < 0.5 * (du + dv) - tol) {
+    double lo = 0, hi = 1;
+    for (int i = 0; i < 100 && hi - lo > 1e-12; ++i) {
+      const double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
+      (f(a) <= f(b) ? hi : lo) = (f(a) <= f(b) ? b : a);
+    }
+    const double t = 0.5 * (lo + hi), dt = f(t);
+    refine(owner, u, at(t), du, dt, depth - 1, out);
+    refine(owner, at(t), v, dt, dv, depth - 1, out);
+    return;
+  }
+  out.add(v, dv);
+}
+
+// Orders one owner pair's pieces into paths: start at an end of odd degree, walk while a
+// continuation exists, repeat until every piece is used.
+void chain(const Sites& sites, const Piece* pieces, const std::int32_t* ids, std::size_t n, Stretches& out) {
+  std::unordered_map<Key, std::vector<std::int32_t>, KeyHash> at;
+  std::vector<std::int32_t> real;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::int32_t i = ids[k];
+    const Piece& p = pieces[i];
+    if (key_of(p.p) == key_of(p.q)) continue;
+    real.push_back(i);
+    at[key_of(p.p)].push_back(i);
+    at[key_of(p.q)].push_back(i);
+  }
+  const Piece& first = pieces[ids[0]];
+  const std::int32_t a = std::min(first.a, first.b), b = std::max(first.a, first.b);
+  if (real.empty()) {  // only degenerate pieces: one point
+    out.open(a, b, first.kind);
+    out.add(first.p, first.d1);
+    return;
+  }
+  std::set<std::int32_t> unused(real.begin(), real.end());
+  while (!unused.empty()) {
+    // Prefer a start of odd degree so that an open chain is walked from one end.
+    std::int32_t start = *unused.begin();
+    Key from = key_of(pieces[start].p);
+    for (std::int32_t i : unused) {
+      const Piece& p = pieces[i];
+      bool found = false;
+      for (const Key& k : {key_of(p.p), key_of(p.q)}) {
+        std::size_t deg = 0;
+        for (std::int32_t j : at[k]) deg += unused.count(j);
+        if (deg % 2 == 1) {
+          start = i;
+          from = k;
+          found = true;
+          break;
+        }
+      }
+      if (found) break;
+    }
+    out.open(a, b, pieces[start].kind);
+    std::int32_t cur = start;
+    while (cur >= 0) {
+      unused.erase(cur);
+      const Piece& p = pieces[cur];
+      const bool forward = key_of(p.p) == from;
+      const Vec2 u = forward ? p.p : p.q, v = forward ? p.q : p.p;
+      const double du = forward ? p.d1 : p.d2, dv = forward ? p.d2 : p.d1;
+      if (out.empty_path()) out.add(u, du);
+      out.lengthen(dist(u, v));
+      refine(sites.sites[p.a], u, v, du, dv, 3, out);
+      from = key_of(v);
+      cur = -1;
+      for (std::int32_t j : at[from])
+        if (unused.count(j)) {
+          cur = j;
+          break;
+        }
+    }
+  }
+}
+
+}  // namespace
+
+bool adjacent(const Sites& s, std::int32_t a, std::int32_t b) {
+  const Site& x = s.sites[a];
+  const Site& y = s.sites[b];
+  const std::int32_t fx[3] = {a, x.end0, x.end1};
+  const std::int32_t fy[3] = {b, y.end0, y.end1};
+  for (std::int32_t i : fx)
+    for (std::int32_t j : fy)
+      if (i >= 0 && i == j) return true;
+  return false;
+}
+
+namespace {
+
+// A point stretch: a pair without a chain whose regions meet at a vertex; added after the chains,
+// in the order of the vertices (their keys).
+struct PointStretch {
+  std::int32_t a, b;
+  PieceKind kind;
+  Vec2 at;
+  double clearance;
+  Key key;
+};
+
+// One piece end at a vertex: what the vertex needs of it.
+struct End {
+  Vec2 at;
+  double clearance;
+  std::int32_t a, b;
+  PieceKind kind;
+};
+
+// An end at a vertex on a part's frame, held until every part is in.
+struct Held {
+  Key key;
+  End end;
+};
+
+// The pairs meeting at one vertex (the piece ends `end(0..n-1)` sharing one key) that `keep`
+// accepts and that have no chain. Nothing here depends on the order of the ends: a diagram
+// that comes in parts gives the same point stretches as a whole one.
+template <class EndAt, class HasChain>
+void vertex(const Key& key, std::size_t n, const EndAt& end, const Sites& sites, const StretchFilter& keep,
+            const HasChain& has_chain, std::vector<std::int32_t>& owners, Paged<PointStretch>& out) {
+  if (n < 2) return;
+  // Where the ends differ by rounding, the greatest (x, y, clearance) gives the vertex.
+  End top = end(0);
+  bool side = false, internal = false;  // some end not between adjacent sites; one inside
+  owners.clear();
+  for (std::size_t e = 0; e < n; ++e) {
+    const End x = end(e);
+    if (std::tie(x.at.x, x.at.y, x.clearance) > std::tie(top.at.x, top.at.y, top.clearance)) top = x;
+    if (x.kind != PieceKind::Adjacent) side = true, internal = internal || x.kind == PieceKind::Internal;
+    owners.push_back(x.a);
+    owners.push_back(x.b);
+  }
+  if (!(top.clearance > 0) || !side) return;  // on the boundary, or only between adjacent sites
+  std::sort(owners.begin(), owners.end());
+  owners.erase(std::unique(owners.begin(), owners.end()), owners.end());
+  if (owners.size() < 3) return;
+  // The pieces around a vertex off the boundary agree on the side (inside or outside).
+  for (std::size_t i = 0; i < owners.size(); ++i)
+    for (std::size_t j = i + 1; j < owners.size(); ++j) {
+      const std::int32_t a = owners[i], b = owners[j];
+      const PieceKind sk = internal                                                ? PieceKind::Internal
+                           : sites.sites[a].shape == sites.sites[b].shape ? PieceKind::Notch
+                                                                           : PieceKind::External;
+      if (adjacent(sites, a, b) || (keep && !keep(a, b, sk)) || has_chain(a, b)) continue;
+      out.push_back({a, b, sk, top.at, top.clearance, key});
+    }
+}
+
+End end_of(const Piece* pieces, std::uint32_t e) {
+  const Piece& p = pieces[e >> 1];
+  return e & 1 ? End{p.q, p.d2, p.a, p.b, p.kind} : End{p.p, p.d1, p.a, p.b, p.kind};
+}
+
+// Piece ends (piece << 1 | end) sorted by position; `n` pieces. 4 bytes an end: a layer has
+// tens of millions.
+std::vector<std::uint32_t> sorted_ends(const Piece* pieces, std::size_t n) {
+  std::vector<std::uint32_t> ends(2 * n);
+  for (std::uint32_t i = 0; i < ends.size(); ++i) ends[i] = i;
+  auto pos = [&](std::uint32_t e) -> const Vec2& { return e & 1 ? pieces[e >> 1].q : pieces[e >> 1].p; };
+  std::sort(ends.begin(), ends.end(), [&](std::uint32_t x, std::uint32_t y) {
+    return std::make_pair(key_of(pos(x)), x) < std::make_pair(key_of(pos(y)), y);
+  });
+  return ends;
+}
+
+std::pair<std::int32_t, std::int32_t> pair_of(const Piece& p) { return {std::min(p.a, p.b), std::max(p.a, p.b)}; }
+
+// Point stretches go after the chains, in vertex order.
+void add_points(const Paged<PointStretch>& points, Stretches& out) {
+  for (const PointStretch& m : points) {
+    out.open(m.a, m.b, m.kind);
+    out.add(m.at, m.clearance);
+  }
+}
+
+// Room reserved at once: pages are committed only as they are written, where vectors growing
+// by doubling would hold up to three times the stretches while they reallocate. A stretch has
+// at most its pieces' ends (a few more where a diagonal dip is refined); point stretches come
+// on top.
+void reserve_for(std::size_t kept, std::size_t pieces, Stretches& out) {
+  out.reserve(kept + pieces / 4 + 64, 2 * kept + pieces / 4 + 64);
+}
+
+bool grouped(const std::vector<Piece>& pieces) {
+  return std::is_sorted(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) { return pair_of(x) < pair_of(y); });
+}
+
+// A whole diagram is a stream of one part with no frame (every vertex is complete where it
+// is), so there is one way to build stretches. `pieces` are grouped by owner pair;
+// done(n) is told after the first n pieces are used.
+template <class Done>
+Stretches in_one_part(const Sites& sites, const std::vector<Piece>& pieces, const StretchFilter& keep, Done&& done) {
+  StretchStream stream(sites, keep, pieces.size());
+  const double none = std::numeric_limits<double>::infinity();
+  stream.part(pieces, Box{none, none, none, none});
+  for (std::size_t g0 = 0; g0 < pieces.size();) {
+    std::size_t g1 = g0 + 1;
+    while (g1 < pieces.size() && pair_of(pieces[g1]) == pair_of(pieces[g0])) ++g1;
+    stream.pair(pieces.data() + g0, g1 - g0);
+    g0 = g1;
+    done(g0);
+  }
+  return stream.finish();
+}
+
+}  // namespace
+
+Stretches stretches_of(const Diagram& d, const StretchFilter& keep) {
+  auto nothing = [](std::size_t) {};
+  if (grouped(d.pieces)) return in_one_part(d.sites, d.pieces, keep, nothing);
+  std::vector<Piece> pieces = d.pieces;  // not the builder's order
+  std::stable_sort(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) { return pair_of(x) < pair_of(y); });
+  return in_one_part(d.sites, pieces, keep, nothing);
+}
+
+Stretches take_stretches(Diagram& d, const StretchFilter& keep) {
+  if (!grouped(d.pieces)) {
+    Stretches out = stretches_of(d, keep);
+    std::vector<Piece>().swap(d.pieces);
+    return out;
+  }
+  std::size_t released = 0;  // pieces before this are consumed and their pages given back
+  Stretches out = in_one_part(d.sites, d.pieces, keep, [&](std::size_t used) {
+    if (used - released >= (std::size_t(1) << 16)) {  // 4 MB of pieces at a time
+      detail::release_pages(d.pieces.data() + released, d.pieces.data() + used);
+      released = used;
+    }
+  });
+  std::vector<Piece>().swap(d.pieces);
+  return out;
+}
+
+void Stretches::keep_only(const std::vector<bool>& keep) {
+  std::size_t h = 0, at = 0;
+  for (std::size_t i = 0; i < heads_.size(); ++i) {
+    if (!keep[i]) continue;
+    Head x = heads_[i];
+    std::copy(points_.begin() + x.first, points_.begin() + x.first + x.count, points_.begin() + at);
+    std::copy(clearance_.begin() + x.first, clearance_.begin() + x.first + x.count, clearance_.begin() + at);
+    x.first = std::uint32_t(at);
+    at += x.count;
+    heads_[h++] = x;
+  }
+  heads_.resize(h);
+  points_.resize(at);
+  clearance_.resize(at);
+}
+
+struct StretchStream::Impl {
+  const Sites& sites;
+  StretchFilter keep;
+  Stretches out;
+  // Both grow with the layer (a few per wire): in Paged arrays, as the stretches are.
+  Paged<PointStretch> points;  // from complete vertices; chains not yet known everywhere
+  Paged<Held> held;            // ends at vertices on a part's frame
+  std::vector<std::int32_t> owners, ids;
+  bool pairs_started = false;
+};
+
+StretchStream::StretchStream(const Sites& sites, StretchFilter keep, std::size_t expected_pieces)
+    : impl_(std::make_unique<Impl>(Impl{sites, std::move(keep), {}, {}, {}, {}, {}, false})) {
+  reserve_for(expected_pieces / 2, expected_pieces, impl_->out);
+}
+
+StretchStream::~StretchStream() = default;
+
+void StretchStream::part(const std::vector<Piece>& part, const Box& frame) {
+  Impl& m = *impl_;
+  if (m.pairs_started) throw std::logic_error("StretchStream: every part comes before the pairs");
+  // A vertex farther than this from the frame has all its pieces in this part: pieces stop at
+  // the frame, and no end of another part can round to its key (1/1024 DBU).
+  const double eps = 1.0 / 64;
+  auto on_frame = [&](const Vec2& v) {
+    return std::fabs(v.x - frame.x1) <= eps || std::fabs(v.x - frame.x2) <= eps || std::fabs(v.y - frame.y1) <= eps ||
+           std::fabs(v.y - frame.y2) <= eps;
+  };
+  // A chain in this part settles a pair; one elsewhere is looked for in finish().
+  auto has_chain_here = [&](std::int32_t a, std::int32_t b) {
+    const auto pr = std::make_pair(a, b);
+    auto it = std::lower_bound(part.begin(), part.end(), pr, [](const Piece& x, const std::pair<std::int32_t, std::int32_t>& v) {
+      return pair_of(x) < v;
+    });
+    for (; it != part.end() && pair_of(*it) == pr; ++it)
+      if (!m.keep || m.keep(a, b, it->kind)) return true;
+    return false;
+  };
+  const std::vector<std::uint32_t> ends = sorted_ends(part.data(), part.size());
+  for (std::size_t g0 = 0; g0 < ends.size();) {
+    const Key k = key_of(end_of(part.data(), ends[g0]).at);
+    std::size_t g1 = g0 + 1;
+    bool framed = on_frame(end_of(part.data(), ends[g0]).at);
+    for (; g1 < ends.size() && key_of(end_of(part.data(), ends[g1]).at) == k; ++g1)
+      framed = framed || on_frame(end_of(part.data(), ends[g1]).at);
+    if (framed) {
+      for (std::size_t e = g0; e < g1; ++e) m.held.push_back({k, end_of(part.data(), ends[e])});
+    } else {
+      vertex(k, g1 - g0, [&](std::size_t e) { return end_of(part.data(), ends[g0 + e]); }, m.sites, m.keep,
+             has_chain_here, m.owners, m.points);
+    }
+    g0 = g1;
+  }
+}
+
+void StretchStream::pair(const Piece* pieces, std::size_t n) {
+  Impl& m = *impl_;
+  m.pairs_started = true;
+  if (n == 0) return;
+  const auto pr = pair_of(pieces[0]);
+  m.ids.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (!m.keep || m.keep(pr.first, pr.second, pieces[i].kind)) m.ids.push_back(std::int32_t(i));
+  if (!m.ids.empty()) chain(m.sites, pieces, m.ids.data(), m.ids.size(), m.out);
+}
+
+Stretches StretchStream::finish() {
+  Impl& m = *impl_;
+  std::sort(m.held.begin(), m.held.end(), [](const Held& x, const Held& y) { return x.key < y.key; });
+  auto none = [](std::int32_t, std::int32_t) { return false; };
+  for (std::size_t g0 = 0; g0 < m.held.size();) {
+    std::size_t g1 = g0 + 1;
+    while (g1 < m.held.size() && m.held[g1].key == m.held[g0].key) ++g1;
+    vertex(m.held[g0].key, g1 - g0, [&](std::size_t e) { return m.held[g0 + e].end; }, m.sites, m.keep, none,
+           m.owners, m.points);
+    g0 = g1;
+  }
+  m.held = Paged<Held>();
+  // The chains are in pair order: a pair has one when a stretch opens with it.
+  const Stretches& st = m.out;
+  const std::size_t chains = st.size();
+  auto has_chain = [&](std::int32_t a, std::int32_t b) {
+    std::size_t lo = 0, hi = chains;
+    while (lo < hi) {
+      const std::size_t mid = (lo + hi) / 2;
+      const Stretch x = st[mid];
+      if (std::make_pair(x.a, x.b) < std::make_pair(a, b)) lo = mid + 1;
+      else hi = mid;
+    }
+    return lo < chains && st[lo].a == a && st[lo].b == b;
+  };
+  m.points.resize(std::size_t(std::remove_if(m.points.begin(), m.points.end(), [&](const PointStretch& p) { return has_chain(p.a, p.b); }) -
+                              m.points.begin()));
+  // Vertex order. A vertex's pairs are distinct and were made in ascending order, so sorting
+  // by (key, a, b) keeps them as a stable sort would, without a stable sort's copy of them.
+  std::sort(m.points.begin(), m.points.end(), [](const PointStretch& x, const PointStretch& y) {
+    return x.key < y.key || (x.key == y.key && std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b));
+  });
+  add_points(m.points, m.out);
+  return std::move(m.out);
+}
+
+}  // namespace linf

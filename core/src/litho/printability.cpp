@@ -1,0 +1,339 @@
+// Printability of gauges (printability.hpp): one window a context, clipped from the layer,
+// imaged with the model and read along the measurement line with the threshold resist.
+#include "linf/litho/printability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "linf/litho/image.hpp"
+#include "linf/litho/mask.hpp"
+#include "linf/litho/resist.hpp"
+#include "util/parallel.hpp"
+
+namespace linf::litho {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& what) { throw std::invalid_argument("printability: " + what); }
+
+// The layer's polygons and a grid of buckets of side `cell` (the window's side): a window meets
+// at most 2 x 2 buckets, so finding its shapes costs a few lookups. Kept here rather than the
+// core's PolygonIndex / BoxTree so that linf_litho stays apart from the diagram's library.
+class Layer {
+ public:
+  Layer(const FlatPolygons& in, std::int64_t cell) : in_(in), cell_(cell) {
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < in.n_rings; ++k) {
+      const std::int64_t c = in.rings[k];
+      if (c == 0) fail("a ring of no points in the layer");
+      if (c < 0 && k == 0) fail("the layer's first ring is a hole");
+      const std::size_t n = std::size_t(c < 0 ? -c : c);
+      if (at + n > in.n_points) fail("the layer's rings hold more points than its points array");
+      if (c > 0) polys_.push_back({k, 0, at, {}});
+      Poly& p = polys_.back();
+      ++p.rings;
+      if (c > 0) {
+        std::int64_t b[4] = {INT64_MAX, INT64_MAX, INT64_MIN, INT64_MIN};
+        for (std::size_t j = at; j < at + n; ++j) {
+          const std::int64_t x = in.points[2 * j], y = in.points[2 * j + 1];
+          if (std::abs(x) > kCoordLimit || std::abs(y) > kCoordLimit) fail("a layer coordinate beyond +-2^30 DBU");
+          b[0] = std::min(b[0], x), b[1] = std::min(b[1], y), b[2] = std::max(b[2], x), b[3] = std::max(b[3], y);
+        }
+        std::copy(b, b + 4, p.box);
+      }
+      at += n;
+    }
+    if (at != in.n_points) fail("the layer's rings do not add up to its points");
+    for (std::size_t i = 0; i < polys_.size(); ++i) {
+      const Poly& p = polys_[i];
+      for (std::int64_t gx = floor_div(p.box[0]); gx <= floor_div(p.box[2]); ++gx)
+        for (std::int64_t gy = floor_div(p.box[1]); gy <= floor_div(p.box[3]); ++gy) buckets_[key(gx, gy)].push_back(i);
+    }
+  }
+
+  // The shapes meeting the box [x0, x0 + w] x [y0, y0 + w] given in half DBU (doubled
+  // coordinates, so that a window centred on a gauge point at a half DBU is exactly centred),
+  // clipped to it, in half DBU.
+  std::vector<Polygon> clip(std::int64_t x0, std::int64_t y0, std::int64_t w) const {
+    std::vector<std::size_t> ids;
+    const std::int64_t lx = floor_half(x0), ly = floor_half(y0), hx = floor_half(x0 + w) + 1, hy = floor_half(y0 + w) + 1;
+    for (std::int64_t gx = floor_div(lx); gx <= floor_div(hx); ++gx)
+      for (std::int64_t gy = floor_div(ly); gy <= floor_div(hy); ++gy) {
+        const auto it = buckets_.find(key(gx, gy));
+        if (it != buckets_.end()) ids.insert(ids.end(), it->second.begin(), it->second.end());
+      }
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    std::vector<Polygon> out;
+    for (std::size_t i : ids) {
+      const Poly& p = polys_[i];
+      if (2 * p.box[0] > x0 + w || 2 * p.box[2] < x0 || 2 * p.box[1] > y0 + w || 2 * p.box[3] < y0) continue;
+      Polygon q;
+      std::size_t at = p.first_point;
+      for (std::size_t r = 0; r < p.rings; ++r) {
+        const std::int64_t c = in_.rings[p.first_ring + r];
+        const std::size_t n = std::size_t(c < 0 ? -c : c);
+        Ring ring = clip_ring(in_.points + 2 * at, n, x0, y0, x0 + w, y0 + w);
+        at += n;
+        if (ring.size() < 3) {
+          if (r == 0) break;  // the outer ring leaves nothing: nor do its holes
+          continue;
+        }
+        if (r == 0) q.outer = std::move(ring);
+        else q.holes.push_back(std::move(ring));
+      }
+      if (!q.outer.empty()) out.push_back(std::move(q));
+    }
+    return out;
+  }
+
+ private:
+  struct Poly {
+    std::size_t first_ring, rings, first_point;
+    std::int64_t box[4];
+  };
+
+  static std::int64_t floor_half(std::int64_t v) { return v >= 0 ? v / 2 : -((-v + 1) / 2); }
+  std::int64_t floor_div(std::int64_t v) const { return v >= 0 ? v / cell_ : -((-v + cell_ - 1) / cell_); }
+  static std::uint64_t key(std::int64_t gx, std::int64_t gy) {
+    return (std::uint64_t(std::uint32_t(std::int32_t(gx))) << 32) | std::uint32_t(std::int32_t(gy));
+  }
+
+  // Sutherland-Hodgman against the box, one side at a time. On a concave ring it can leave
+  // zero-width runs along a side; the mask's spectrum integrates edge by edge (Green's theorem),
+  // where such runs cancel, so the clipped region's coefficients are exact (but for the rounding
+  // of a slanted edge's crossing to the DBU grid).
+  static Ring clip_ring(const std::int64_t* pts, std::size_t n, std::int64_t lx, std::int64_t ly, std::int64_t hx,
+                        std::int64_t hy) {
+    std::vector<std::pair<double, double>> a, b;
+    a.reserve(n + 8);
+    for (std::size_t j = 0; j < n; ++j) a.push_back({2.0 * double(pts[2 * j]), 2.0 * double(pts[2 * j + 1])});
+    for (int side = 0; side < 4 && !a.empty(); ++side) {
+      // inside: value(p) >= 0
+      auto value = [&](const std::pair<double, double>& p) {
+        switch (side) {
+          case 0: return p.first - double(lx);
+          case 1: return double(hx) - p.first;
+          case 2: return p.second - double(ly);
+          default: return double(hy) - p.second;
+        }
+      };
+      b.clear();
+      for (std::size_t j = 0; j < a.size(); ++j) {
+        const auto& p = a[j];
+        const auto& q = a[(j + 1) % a.size()];
+        const double vp = value(p), vq = value(q);
+        if (vp >= 0) b.push_back(p);
+        if ((vp >= 0) != (vq >= 0) && vp != 0 && vq != 0) {
+          const double t = vp / (vp - vq);
+          std::pair<double, double> s{p.first + t * (q.first - p.first), p.second + t * (q.second - p.second)};
+          // Exactly on the side it crosses; the other coordinate to the half-DBU grid.
+          if (side < 2) s.first = side == 0 ? double(lx) : double(hx), s.second = std::round(s.second);
+          else s.second = side == 2 ? double(ly) : double(hy), s.first = std::round(s.first);
+          b.push_back(s);
+        }
+      }
+      std::swap(a, b);
+    }
+    Ring ring;
+    ring.reserve(a.size());
+    for (const auto& p : a) {
+      const Point q{Coord(std::llround(p.first)), Coord(std::llround(p.second))};
+      if (ring.empty() || ring.back() != q) ring.push_back(q);
+    }
+    while (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
+    return ring;
+  }
+
+  FlatPolygons in_;
+  std::int64_t cell_;
+  std::vector<Poly> polys_;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> buckets_;
+};
+
+}  // namespace
+
+Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeColumns& g, const PrintModel& model,
+                          int threads) {
+  if (model.kernels == nullptr || model.kernels->count() == 0) fail("the model has no kernels");
+  const Kernels& kernels = *model.kernels;
+  if (!(model.threshold > 0)) fail("the resist threshold must be positive");
+  if (!(dbu_nm > 0)) fail("the database unit must be positive");
+  if (!(model.dose >= 0 && model.dose < 1)) fail("the dose latitude must lie in [0, 1)");
+  if (model.defocus && (model.defocus->count() == 0 || model.defocus->size != kernels.size ||
+                        model.defocus->period != kernels.period))
+    fail("the defocus kernels must have the focus kernels' period and size");
+  const std::size_t n = g.size();
+  for (const std::size_t m : {g.cy.size(), g.x1.size(), g.y1.size(), g.x2.size(), g.y2.size(), g.type.size(), g.cd.size()})
+    if (m != n) fail("the gauge columns have different lengths");
+  if (g.context.size() != 0 && g.context.size() != n) fail("the context ids are not one a gauge");
+  const double P = kernels.period;
+  // The window in half DBU, an even number of them inside the period (the mask refuses points
+  // beyond it), centred exactly on the gauge point (a gauge point lies on the half-DBU grid).
+  const double half_dbu = dbu_nm / 2;
+  std::int64_t W = std::int64_t(std::floor(P / half_dbu + 1e-9));
+  W -= W % 2;
+  if (W < 4) fail("the model's period is below two database units");
+  auto origin = [&](double c) { return std::int64_t(std::llround(2 * c)) - W / 2; };
+  for (std::size_t i = 0; i < n; ++i) {
+    const double cx = g.cx[i], cy = g.cy[i];
+    const std::int64_t ox = origin(cx), oy = origin(cy);
+    auto inside = [&](double x, double y) {
+      return 2 * x >= double(ox) && 2 * x <= double(ox + W) && 2 * y >= double(oy) && 2 * y <= double(oy + W);
+    };
+    std::ostringstream s;
+    s << "gauge " << i << " (at " << cx << ", " << cy << " DBU): ";
+    if (!(g.cd[i] > 0)) fail(s.str() + "its drawn cd is not positive");
+    if (!(std::hypot(g.x2[i] - g.x1[i], g.y2[i] - g.y1[i]) > 0)) fail(s.str() + "its measurement line has no length");
+    if (!inside(g.x1[i], g.y1[i]) || !inside(g.x2[i], g.y2[i])) {
+      s << "its measurement line reaches outside its window, the model's period of " << P << " nm centred on the point";
+      fail(s.str());
+    }
+  }
+  // Who simulates: the first gauge of each (type, context); the others read its result.
+  std::vector<std::size_t> source(n);
+  std::vector<std::size_t> reps;
+  {
+    std::unordered_map<std::uint64_t, std::vector<std::pair<std::int32_t, std::size_t>>> first;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (g.context.size() == 0) {
+        source[i] = i, reps.push_back(i);
+        continue;
+      }
+      auto& v = first[g.context[i]];
+      const auto it = std::find_if(v.begin(), v.end(), [&](const auto& e) { return e.first == g.type[i]; });
+      if (it != v.end()) {
+        source[i] = it->second;
+      } else {
+        v.push_back({g.type[i], i});
+        source[i] = i, reps.push_back(i);
+      }
+    }
+  }
+  Printability out;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  out.printed_cd.assign(n, nan);
+  out.fails.assign(n, Fail::none);
+  out.fails_nominal.assign(n, Fail::none);
+  out.pv_band.assign(n, nan);
+  out.score.assign(n, nan);
+  out.simulations = reps.size();
+  out.shared = n - reps.size();
+  const Layer shapes(layer, std::max<std::int64_t>(W / 2, 1));
+  const double reach = P / 4;
+  // One condition's reading along a line: the printed width (NaN unless measured), the failure,
+  // the per-condition score (printability.hpp), against threshold t.
+  struct Reading {
+    Fail fail = Fail::none;
+    double width = std::numeric_limits<double>::quiet_NaN();
+    double score = 0;
+    bool open = false;
+  };
+  auto read = [&](const LineProfile& line, double t, bool space, double drawn) {
+    Reading r;
+    const Cut cut = measure(line, t, space ? Across::clear : Across::printed, reach);
+    switch (cut.outcome) {
+      case Cut::Outcome::measured:
+        r.width = cut.width;
+        r.score = cut.width / drawn;
+        break;
+      case Cut::Outcome::open:
+        r.open = true;
+        r.score = 2 * reach / drawn;
+        break;
+      case Cut::Outcome::pinch:
+      case Cut::Outcome::bridge: {
+        const double at = line.at(0);
+        r.fail = space ? Fail::bridge : Fail::pinch;
+        r.width = 0;
+        r.score = space ? (at > 0 ? t / at - 1 : -1.0) : at / t - 1;
+        break;
+      }
+    }
+    return r;
+  };
+  const bool window = model.dose > 0;
+  const double t = model.threshold;
+  const double t_inner = t / ((1 - model.dose) * (1 - model.dose)), t_outer = t / ((1 + model.dose) * (1 + model.dose));
+  std::exception_ptr error;
+  std::mutex error_lock;
+  detail::parallel_for(reps.size(), threads, [&](unsigned, std::size_t k) {
+    try {
+      const std::size_t i = reps[k];
+      const double cx = g.cx[i], cy = g.cy[i];
+      const std::int64_t ox = origin(cx), oy = origin(cy);
+      const std::vector<Polygon> clip = shapes.clip(ox, oy, W);
+      const MaskSpectrum mask(clip, Window{{ox, oy}, half_dbu}, P, kernels.half());
+      const AerialImage image(kernels, mask);
+      double dx = g.x2[i] - g.x1[i], dy = g.y2[i] - g.y1[i];
+      const double len = std::hypot(dx, dy);
+      dx /= len, dy /= len;
+      const double px = (2 * cx - double(ox)) * half_dbu, py = (2 * cy - double(oy)) * half_dbu;
+      const LineProfile line(image, px, py, dx, dy);
+      const bool space = g.type[i] == kExternalGauge;
+      const double drawn = g.cd[i] * dbu_nm;
+      const Reading nominal = read(line, t, space, drawn);
+      if (nominal.fail == Fail::none) out.printed_cd[i] = nominal.width;  // a failure leaves NaN
+      out.fails[i] = out.fails_nominal[i] = nominal.fail;
+      out.score[i] = nominal.score;
+      if (!window) return;
+      // The outer corner: in focus at the high dose, the same image against a lower threshold.
+      const Reading outer = read(line, t_outer, space, drawn);
+      // The inner corner: defocused at the low dose (the focus image for a dose-only window).
+      Reading inner;
+      if (model.defocus) {
+        const AerialImage blurred(*model.defocus, mask);
+        inner = read(LineProfile(blurred, px, py, dx, dy), t_inner, space, drawn);
+      } else {
+        inner = read(line, t_inner, space, drawn);
+      }
+      for (const Reading* r : {&outer, static_cast<const Reading*>(&inner)}) {
+        if (r->fail != Fail::none) out.fails[i] = r->fail;
+        out.score[i] = std::min(out.score[i], r->score);
+      }
+      if (!outer.open && !inner.open) out.pv_band[i] = std::abs(outer.width - inner.width);
+    } catch (...) {
+      const std::lock_guard<std::mutex> hold(error_lock);
+      if (!error) error = std::current_exception();
+    }
+  });
+  if (error) std::rethrow_exception(error);
+  for (std::size_t i = 0; i < n; ++i)
+    if (source[i] != i) {
+      out.printed_cd[i] = out.printed_cd[source[i]];
+      out.fails[i] = out.fails[source[i]];
+      out.fails_nominal[i] = out.fails_nominal[source[i]];
+      out.pv_band[i] = out.pv_band[source[i]];
+      out.score[i] = out.score[source[i]];
+    }
+  return out;
+}
+
+std::vector<std::vector<double>> window_images(const FlatPolygons& layer, double dbu_nm, const std::vector<double>& cx,
+                                               const std::vector<double>& cy, const Kernels& kernels, int m,
+                                               int threads) {
+  if (kernels.count() == 0) fail("the model has no kernels");
+  if (!(dbu_nm > 0)) fail("the database unit must be positive");
+  if (m < kernels.size) fail("a picture's grid must be at least the kernels' size");
+  if (cx.size() != cy.size()) fail("the centres' x and y have different lengths");
+  const double P = kernels.period, half_dbu = dbu_nm / 2;
+  std::int64_t W = std::int64_t(std::floor(P / half_dbu + 1e-9));
+  W -= W % 2;
+  if (W < 4) fail("the model's period is below two database units");
+  const Layer shapes(layer, std::max<std::int64_t>(W / 2, 1));
+  std::vector<std::vector<double>> out(cx.size());
+  for (std::size_t k = 0; k < cx.size(); ++k) {
+    const std::int64_t ox = std::int64_t(std::llround(2 * cx[k])) - W / 2, oy = std::int64_t(std::llround(2 * cy[k])) - W / 2;
+    const AerialImage image(kernels, MaskSpectrum(shapes.clip(ox, oy, W), Window{{ox, oy}, half_dbu}, P, kernels.half()));
+    out[k] = image.grid(m, threads);
+  }
+  return out;
+}
+
+}  // namespace linf::litho

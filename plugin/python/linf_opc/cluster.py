@@ -1,0 +1,168 @@
+"""The diagram's tiles on a Dask cluster (-rd scheduler=tcp://HOST:PORT).
+
+in:  the scheduler's address; the core's tile jobs (bytes: one tile's sites and halo, never the
+     layer's), taken one at a time while the core plans the tiles
+out: each job's result bytes, handed back to the core in the order the jobs were taken; the
+     core then classifies, merges, checks and writes exactly as in a local run (same files)
+
+Only the tiles leave this host; the far field, the merge, the check, the writers and every
+later stage run here. A lost worker's tasks are rerun by Dask on the others. Errors a user can
+meet are ClusterError (one line, exit code 2, as a UsageError), raised before anything is written
+when the scheduler cannot be reached."""
+import collections
+import contextlib
+import logging
+import re
+import socket
+import uuid
+import warnings
+
+from . import cluster_task, core
+
+CONNECT_SECONDS = 5  # the scheduler's answer; with KLayout's start, one line within 10 s
+WORKERS_SECONDS = 60  # for the first worker to join a scheduler that has none yet
+
+_ADDRESS = re.compile(r"^(tcp|tls)://[^\s:/]+:\d+$")
+
+
+class ClusterError(Exception):
+    """A cluster the run cannot use: one line, exit code 2 (commands.main), as a UsageError.
+    Not a UsageError itself: this module is also imported where KLayout is not (the editor's
+    worker process), and arguments.py needs it."""
+
+
+def parse_address(text):
+    """-rd scheduler=tcp://HOST:PORT (or tls://); None if not given."""
+    if text in (None, ""):
+        return None
+    if not _ADDRESS.match(text):
+        raise ClusterError("scheduler must be a Dask scheduler's address tcp://HOST:PORT, not %r" % text)
+    return text
+
+
+def _quiet():
+    # Dask's own log lines (reconnects, a worker lost and its tasks rerun) are not the tool's
+    # output: only errors that end the run are said, in one line.
+    for name in ("distributed", "tornado", "asyncio"):
+        logging.getLogger(name).setLevel(logging.CRITICAL)
+
+
+def _reachable(address):
+    """A plain TCP connection first: a refused or unrouted address is said at once, before
+    Dask (slow to import) is even loaded."""
+    host, port = address.split("://", 1)[1].rsplit(":", 1)
+    try:
+        socket.create_connection((host, int(port)), timeout=CONNECT_SECONDS).close()
+    except OSError as e:
+        raise ClusterError("cannot reach the Dask scheduler at %s (%s); nothing written"
+                           % (address, e.strerror or str(e) or type(e).__name__))
+
+
+def connect(address):
+    """A distributed.Client on the scheduler, with at least one worker; ClusterError if not."""
+    _reachable(address)
+    try:
+        import distributed
+    except ImportError:
+        raise ClusterError("-rd scheduler needs Dask on this host: install python3-distributed "
+                           "(apt-get install python3-distributed)")
+    _quiet()
+    try:
+        client = distributed.Client(address, timeout=CONNECT_SECONDS, set_as_default=False)
+    except Exception as e:  # noqa: BLE001 - OSError, TimeoutError, or Dask's own on a bad address
+        reason = str(e).splitlines()[0] if str(e) else type(e).__name__
+        raise ClusterError("cannot reach the Dask scheduler at %s within %d s (%s); nothing written"
+                           % (address, CONNECT_SECONDS, reason))
+    try:
+        client.wait_for_workers(1, timeout=WORKERS_SECONDS)
+    except Exception:  # noqa: BLE001
+        client.close()
+        raise ClusterError("no Dask worker joined the scheduler at %s within %d s: start workers with "
+                           "dask-worker %s (see the README); nothing written" % (address, WORKERS_SECONDS, address))
+    return client
+
+
+class Tiles:
+    """The core's TileRunner (convert.hpp, runner_of): callable(next, done)."""
+
+    def __init__(self, client, threads=1):
+        self.client = client
+        self.threads = threads  # the builder's threads in a task; Dask runs --nthreads tasks a worker
+        self.address = client.scheduler.address
+        import cloudpickle
+        cloudpickle.register_pickle_by_value(cluster_task)  # the workers need the core only
+
+    def _slots(self):
+        workers = self.client.scheduler_info().get("workers", {})
+        return max(1, sum(w.get("nthreads", 1) for w in workers.values()))
+
+    def _result(self, future, k):
+        try:
+            answer = future.result()
+        except Exception as e:  # noqa: BLE001 - KilledWorker (lost too often), a task that cannot run
+            raise ClusterError("tile %d failed on the Dask cluster at %s: %s: %s"
+                               % (k, self.address, type(e).__name__, str(e).splitlines()[0] if str(e) else ""))
+        if answer[0] == "ok":
+            return answer[1]
+        if answer[0] == "missing":
+            raise ClusterError("the Dask worker on %s cannot import the core module linf_opc_core (%s): put the "
+                               "build's linf_opc_core*.so (the build/ folder, or the installed package's linf_opc "
+                               "folder) on the workers' PYTHONPATH and restart them" % (answer[1], answer[2]))
+        name, message = answer[1], answer[2]
+        if name == "DiagramError":
+            raise core.DiagramError(message)
+        if name == "ValueError":
+            raise ValueError(message)
+        raise RuntimeError(message)
+
+    def __call__(self, next_job, done):
+        with warnings.catch_warnings():
+            # A job is a tile's sites, a few MB: Dask's warning about large task arguments is
+            # meant for data better scattered, which a lost worker would take with it.
+            warnings.simplefilter("ignore", UserWarning)
+            self._run(next_job, done)
+
+    def _run(self, next_job, done):
+        run = uuid.uuid4().hex[:12]
+        ahead = 2 * self._slots() + 2  # queued beyond the running ones: workers never wait on this host
+        pending = collections.deque()  # (tile number, future), in the order the jobs were taken
+        taken, exhausted = 0, False
+        try:
+            while True:
+                while not exhausted and len(pending) < ahead:
+                    job = next_job()
+                    if job is None:
+                        exhausted = True
+                        break
+                    pending.append((taken, self.client.submit(cluster_task.build_tile, job, self.threads,
+                                                              key="linf-tile-%s-%d" % (run, taken), pure=False)))
+                    taken += 1
+                if not pending:
+                    return
+                k, future = pending.popleft()
+                result = self._result(future, k)
+                future.release()
+                done(result)
+        finally:
+            for _, future in pending:
+                future.cancel()
+
+
+_client = None
+
+
+@contextlib.contextmanager
+def tiles_on(address):
+    """Inside the block, the core calls that build the diagram send its tiles to the cluster."""
+    global _client
+    client = connect(address)
+    _client = client
+    try:
+        with core.tiles_with(Tiles(client)):
+            yield
+    finally:
+        _client = None
+        try:
+            client.close(timeout=5)
+        except Exception:  # noqa: BLE001 - a scheduler gone by now: nothing to release
+            pass

@@ -1,0 +1,230 @@
+"""Printability scoring of the gauge table (issue 34): with -rd litho=PRESET|DIR every gauge is
+read on the lithography model's aerial image (core.gauge_printability: one simulation a type and
+context), at nominal dose and focus and at the process window's two corners, and the table is
+ranked again by the printability score (lower = worse, failures first). The geometric score
+stays beside it (geo_score). Everything downstream (selection, plan, split, report, editor)
+reads the re-ranked table as it reads the geometric one.
+
+in:  the gauge stage's result (gauges.Gauges), the layer's polygons, the chosen Model
+out: the result with .gauges replaced by the re-ranked GaugeTable, whose .litho holds the
+     columns geo_score, printed_cd, pv_band, fails (by row = rank - 1), and .litho_summary.
+
+Rules and their reasons: docs/design.md, "Printability in the flow".
+"""
+import os
+import time
+from array import array
+
+from . import core
+from . import selection as selection_stage
+from .arguments import UsageError
+from .gauges import GaugeTable
+from .polygons import core_input
+
+# The process window: dose +-2% (the ICCAD 2013 contest's DoseMin / DoseMax); the defocus corner
+# per preset (nm). duv193: 25 nm, the contest's defocused kernels (M1OPC_def) for the same
+# scanner class; euv: 30 nm, the same share (0.24) of lambda / NA^2 (124 nm at 13.5 nm, NA 0.33).
+DOSE = 0.02
+DEFOCUS_NM = {"duv193": 25.0, "euv": 30.0}
+PRESETS = ("duv193", "euv", "iccad13")
+FAILS = ("none", "pinch", "bridge")
+
+
+class Model:
+    """A lithography model chosen by name: focus kernels, defocus kernels (None: a dose-only
+    process window) and what to call it."""
+
+    def __init__(self, name, kernels, defocus, defocus_nm, source):
+        self.name, self.kernels, self.defocus, self.defocus_nm, self.source = name, kernels, defocus, defocus_nm, source
+
+
+def models_dir():
+    """The shipped kernels: models/ of the checkout, or of the installed KLayout package."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    for up in (os.path.join(here, "..", ".."), os.path.join(here, "..", "..", "..")):
+        d = os.path.normpath(os.path.join(up, "models"))
+        if os.path.isdir(os.path.join(d, "iccad13")):
+            return d
+    return None
+
+
+def _kernels_folder(folder, what):
+    try:
+        return core.litho_kernels(folder=folder, period=2048.0)
+    except ValueError as e:
+        raise UsageError("litho=%s: %s" % (what, e))
+
+
+def model_of(args):
+    """-rd litho=duv193|euv|iccad13|DIR, or None without it. DIR: kernels in the ICCAD 2013 format
+    (scales.txt, fh*.bin, 2048 nm period), either in DIR itself (a dose-only process window) or
+    in DIR/M1OPC with the defocused ones in DIR/M1OPC_def. Read at once: a bad model stops the
+    command before the layer is read (UsageError, exit 2)."""
+    text = args.get("litho")
+    if text in (None, ""):
+        return None
+    if text in DEFOCUS_NM:
+        try:
+            focus = core.litho_kernels(preset=text)
+            blurred = core.litho_kernels(preset=text, defocus=DEFOCUS_NM[text])
+        except ValueError as e:
+            raise UsageError("litho=%s: %s" % (text, e))
+        return Model(text, focus, blurred, DEFOCUS_NM[text], "preset")
+    folder = text
+    if text == "iccad13":
+        base = models_dir()
+        if base is None:
+            raise UsageError("litho=iccad13: the shipped kernels (models/iccad13) are not installed")
+        folder = os.path.join(base, "iccad13")
+    elif not os.path.isdir(text):
+        raise UsageError("litho must be one of %s or a folder of ICCAD 2013 kernels, not %r"
+                         % (", ".join(PRESETS), text))
+    if os.path.isdir(os.path.join(folder, "M1OPC")):
+        focus = _kernels_folder(os.path.join(folder, "M1OPC"), text)
+        blurred = None
+        if os.path.isdir(os.path.join(folder, "M1OPC_def")):
+            blurred = _kernels_folder(os.path.join(folder, "M1OPC_def"), text)
+            if blurred.size != focus.size:
+                raise UsageError("litho=%s: the defocused kernels are %d x %d, the focused %d x %d"
+                                 % (text, blurred.size, blurred.size, focus.size, focus.size))
+        # The contest's defocused kernels are 25 nm from focus; another folder's distance is not known.
+        defocus_nm = 0.0 if blurred is None else (25.0 if text == "iccad13" else None)
+        return Model(text, focus, blurred, defocus_nm, "files")
+    return Model(text, _kernels_folder(folder, text), None, 0.0, "files")
+
+
+class LithoColumns:
+    """The printability columns of a re-ranked table, by row (rank - 1): geo_score (DBU),
+    printed_cd and pv_band (nm, NaN where not measured), fails (0 none, 1 pinch, 2 bridge)."""
+
+    def __init__(self, geo_score, printed_cd, pv_band, fails):
+        self.geo_score, self.printed_cd, self.pv_band, self.fails = geo_score, printed_cd, pv_band, fails
+
+    HEADER = "geo_score,printed_cd,pv_band,fails"
+
+    def fields(self, row, dbu):
+        """The four CSV fields of a row: µm with six decimals (empty where not measured), fails by name."""
+        def um(nm):
+            return "" if nm != nm else "%.6f" % (nm / 1000.0)
+        return "%.6f,%s,%s,%s" % (self.geo_score[row] * dbu, um(self.printed_cd[row]), um(self.pv_band[row]),
+                                 FAILS[self.fails[row]])
+
+    def append_to_csv(self, path, dbu):
+        """Adds the four columns to a gauges.csv the core wrote (its id is the gauge's rank)."""
+        with open(path, "rb") as f:
+            lines = f.read().split(b"\r\n")
+        out = [lines[0] + b"," + self.HEADER.encode()]
+        for line in lines[1:]:
+            if not line:
+                continue
+            row = int(line[:line.index(b",")]) - 1
+            out.append(line + b"," + self.fields(row, dbu).encode())
+        with open(path, "wb") as f:
+            f.write(b"\r\n".join(out) + b"\r\n")
+
+
+def _fits(reals, n, half):
+    """1 where the gauge's measurement line fits in the model's window centred on its point."""
+    out = bytearray(n)
+    for i in range(n):
+        r = reals[10 * i:10 * i + 6]
+        cx, cy = r[4], r[5]
+        out[i] = max(abs(r[0] - cx), abs(r[2] - cx), abs(r[1] - cy), abs(r[3] - cy)) <= half
+    return out
+
+
+def rescore(result, polygons, dbu_um, model, threads=0):
+    """The gauge stage's `result` with its table ranked by printability on `model`. The threshold
+    is calibrated on the layer's typical width and pitch (core.calibrate_threshold); a model that
+    does not resolve them is a UsageError. Gauges whose measurement line does not fit in the
+    model's window (a width or space above about half its period) cannot be simulated, and a
+    reading that finds no edge within a quarter window says nothing of the print: such gauges
+    keep fails none and no printed_cd, and rank last, with the highest score of the others."""
+    t0 = time.perf_counter()
+    table = result.gauges
+    n = len(table)
+    dbu_nm = dbu_um * 1000.0
+    kernels = model.kernels
+    P = kernels.period
+    width_nm = result.typical_width * dbu_nm
+    pitch_nm = selection_stage.pitch_of(table) * dbu_nm
+    try:
+        cal = core.calibrate_threshold(kernels, width_nm, pitch_nm)
+    except ValueError as e:
+        raise UsageError("litho=%s cannot print the layer's typical line (%.4g nm at a pitch of %.4g nm): %s"
+                         % (model.name, width_nm, pitch_nm, e))
+    reals, ints = table.columns()
+    half = P / dbu_nm / 2 - 1  # a unit to spare for the window's rounding to the half DBU
+    fits = _fits(reals, n, half)
+    idx = array("i", (i for i in range(n) if fits[i]))
+    col = lambda k: array("d", (reals[10 * i + k] for i in idx))  # noqa: E731
+    types = array("i", (ints[13 * i + 12] for i in idx))
+    flat = core_input(polygons)
+    pts = array("d")
+    for i in idx:
+        pts.append(reals[10 * i + 4])
+        pts.append(reals[10 * i + 5])
+    # One simulation a type and context: the layer within half the window of the point, up to
+    # the square's symmetries (contexts.py); a repeated context costs nothing more.
+    ids = array("Q")
+    ids.frombytes(core.gauge_contexts(flat, pts, P / 2 / dbu_nm))
+    r = core.gauge_printability(flat, dbu_nm, col(4), col(5), col(0), col(1), col(2), col(3), types, col(6),
+                                kernels, cal["threshold"], ids, threads, model.defocus, DOSE)
+    s, printed, band = array("d", r["score"]), array("d", r["printed_cd"]), array("d", r["pv_band"])
+    fails_sim = array("B", r["fails"])
+    nan = float("nan")
+    score = array("d", [nan]) * n
+    pcd, pvb, fl = array("d", [nan]) * n, array("d", [nan]) * n, array("B", bytes(n))
+    for k, i in enumerate(idx):
+        score[i], pcd[i], pvb[i], fl[i] = s[k], printed[k], band[k], fails_sim[k]
+    # Read: measured or failed at some condition. Not read: no edge within reach of the point (a
+    # space or width wider than half the window: the core's score there is only a lower bound,
+    # below 1 for a drawn cd above half the window, which would put wide spaces first) or not
+    # simulable. The read ones rank by score, ties by geometric rank; the others follow by
+    # geometric rank, with the highest score of the read ones, so that scores never decrease.
+    read = bytearray(n)
+    for i in idx:
+        read[i] = pcd[i] == pcd[i] or fl[i] != 0
+    top = max((score[i] for i in idx if read[i]), default=1.0)
+    order = sorted(range(n), key=lambda i: (0, score[i], i) if read[i] else (1, 0.0, i))
+    for i in range(n):
+        if not read[i]:
+            score[i] = top
+    # The table holds scores in DBU (every writer multiplies by the DBU): the ratio is held
+    # divided by it, so that files and reports show the ratio itself.
+    highest = max(score) if n else 1.0
+    new_reals, new_ints = array("d", bytes(80 * n)), array("i", bytes(52 * n))
+    geo = array("d", bytes(8 * n))
+    p_cd, p_band, p_fail = array("d", bytes(8 * n)), array("d", bytes(8 * n)), array("B", bytes(n))
+    for row, i in enumerate(order):
+        rr = reals[10 * i:10 * i + 10]
+        geo[row] = rr[7]
+        rr = list(rr)
+        rr[7] = score[i] / dbu_um
+        rr[8] = score[i] / highest if highest > 0 else 0.0
+        new_reals[10 * row:10 * row + 10] = array("d", rr)
+        ii = list(ints[13 * i:13 * i + 13])
+        ii[0] = row + 1
+        new_ints[13 * row:13 * row + 13] = array("i", ii)
+        p_cd[row], p_band[row], p_fail[row] = pcd[i], pvb[i], fl[i]
+    paths = None
+    if table._paths is not None:
+        paths = [table._paths[i] for i in order]
+    new = GaugeTable({"count": n, "reals": new_reals.tobytes(), "ints": new_ints.tobytes(), "paths": paths})
+    new.litho = LithoColumns(geo, p_cd, p_band, p_fail)
+    result.gauges = new
+    result.csv_path = None  # a gauges.csv the core wrote during the stage is in the geometric order
+    result.litho_summary = {
+        "model": model.name, "kernels": model.source, "period_nm": P, "threshold": round(cal["threshold"], 9),
+        "calibration": {"width_nm": round(width_nm, 6), "pitch_nm": round(cal["pitch"], 6),
+                        "contrast": round(cal["contrast"], 6)},
+        "process_window": {"dose": DOSE, "defocus_nm": model.defocus_nm},
+        "simulated": len(idx), "not_simulable": n - len(idx), "not_read": n - sum(read), "simulations": r["simulations"], "shared": r["shared"],
+        "fails": {name: p_fail.count(k) for k, name in enumerate(FAILS)},
+        "fails_nominal": {name: array("B", r["fails_nominal"]).count(k) for k, name in enumerate(FAILS)},
+        "seconds": round(time.perf_counter() - t0, 3),
+    }
+    result.litho_model, result.litho_threshold = model, cal["threshold"]  # the report's pictures
+    result.seconds["litho"] = time.perf_counter() - t0
+    return result
+

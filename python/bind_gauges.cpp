@@ -1,0 +1,166 @@
+// The gauges stage: the diagram, then its gauges ranked, handed over as the gauge table.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <optional>
+
+#include "bind.hpp"
+#include "convert.hpp"
+#include "linf/gauges/context.hpp"
+#include "linf/gauges/gauge.hpp"
+#include "linf/io/csv.hpp"
+#include "linf/io/gauge_table.hpp"
+#include "linf/pipeline/stream.hpp"
+#include "linf/pipeline/whole.hpp"
+
+namespace linf::bind {
+
+namespace {
+
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The gauge table (gauge_table.hpp) as two bytes objects, or in `file` for the caller to map;
+// with the stretches' paths if asked for, else the stretches are let go first. The gauges are
+// consumed (g.gauges is empty after).
+py::dict gauge_table(const Sites& sites, Gauges& g, bool with_paths, const std::string& file) {
+  if (!with_paths) g.stretches = Stretches();
+  const std::size_t n = g.gauges.size();
+  py::object reals = py::none(), ints = py::none();
+  std::optional<GaugeTableWriter> table;
+  if (file.empty()) {
+    char *rd = nullptr, *id = nullptr;
+    reals = blank_bytes(kGaugeRealBytes * n, rd);
+    ints = blank_bytes(kGaugeIntBytes * n, id);
+    table.emplace(n, rd, id);
+  } else {
+    table.emplace(n, file);
+  }
+  py::list paths;
+  std::function<void(const Gauge&)> each;
+  if (with_paths)
+    each = [&](const Gauge& x) {
+      py::list pts;
+      for (const Vec2& v : g.stretches[x.stretch].path) pts.append(py::make_tuple(v.x, v.y));
+      paths.append(pts);
+    };
+  write_gauge_table(sites, g, *table, each);
+  py::dict out;
+  out["count"] = n;
+  out["reals"] = reals;
+  out["ints"] = ints;
+  out["file"] = file.empty() ? py::object(py::none()) : py::object(py::str(file));
+  out["paths"] = with_paths ? py::object(paths) : py::object(py::none());
+  return out;
+}
+
+}  // namespace
+
+void bind_gauges(py::module_& m) {
+  m.def(
+      "gauges_polygons",
+      [](const py::object& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
+         bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu, const std::string& gds,
+         int gds_layer, const std::string& gds_cell, const std::string& gauges_csv, const std::string& columns,
+         const py::object& tiles) {
+        const LayerInput in(polys);
+        const TileRunner runner = runner_of(tiles);
+        StreamOutputs files = outputs_of(csv, dbu, gds, gds_layer, gds_cell);
+        GaugeOptions o;
+        o.tooth_fraction = tooth_fraction;
+        o.space_limit_widths = space_limit;
+        Diagram diagram;  // sites and statistics
+        Gauges g;
+        double seconds = 0;
+        py::dict d;
+        if (with_pieces) {
+          WholeResult w;
+          {
+            py::gil_scoped_release unlocked;
+            w = voronoi_whole(in.flat(), options(check, pairs, threads, tile), files);
+          }
+          d = stage_dict(w, !gds.empty());
+          py::gil_scoped_release unlocked;
+          const auto t0 = std::chrono::steady_clock::now();
+          Stretches st = take_gauge_stretches(w.result.diagram);
+          g = gauges_of(w.result.diagram.sites, std::move(st), o);
+          seconds = since(t0);
+          diagram = std::move(w.result.diagram);
+        } else {
+          // The pieces stream past the writers and into the stretches: never all in memory.
+          files.keep = measurable_pair;
+          StreamResult r;
+          {
+            py::gil_scoped_release unlocked;
+            r = stream_voronoi(in.flat(), options(check, pairs, threads, tile), files, runner);
+            const auto t0 = std::chrono::steady_clock::now();
+            g = gauges_of(r.diagram.sites, std::move(r.stretches), o);
+            seconds = r.seconds_stretches + since(t0);
+          }
+          d = stage_dict(r, !gds.empty());
+          diagram = std::move(r.diagram);
+        }
+        if (!gauges_csv.empty()) {
+          py::gil_scoped_release unlocked;
+          write_gauges_csv(diagram.sites, g, dbu, gauges_csv);
+        }
+        d["seconds"].cast<py::dict>()["gauges"] = seconds;
+        py::dict res;
+        res["stretches"] = g.measurable;
+        res["gauges"] = gauge_table(diagram.sites, g, with_paths, columns);
+        res["typical_width"] = g.typical_width;
+        res["space_limit"] = g.space_limit;
+        res["diagram"] = d;
+        return res;
+      },
+      py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
+      py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false, py::arg("paths") = false,
+      py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("gds") = "", py::arg("gds_layer") = 0,
+      py::arg("gds_cell") = "VORONOI", py::arg("gauges_csv") = "", py::arg("columns") = "",
+      py::arg("tiles") = py::none(),
+      "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
+      "Returns {'gauges': {'count': n, 'reals': bytes, 'ints': bytes, 'paths': [[(x, y)]] if paths=True else None},\n"
+      "'stretches': n, ...}: the gauges in rank order as columns, float64 x10 per gauge (x1, y1, x2, y2, cx, cy, cd,\n"
+      "score, norm_score, tiebreak) and int32 x13 (rank, teeth, site_a, site_b, a_x1, a_y1, a_x2, a_y2, b_x1, b_y1,\n"
+      "b_x2, b_y2, type: 0 internal, 1 external, 2 sandwich, 3 comb, 4 T); 'stretches': the measurable stretches,\n"
+      "'typical_width', 'space_limit', 'diagram': {'counts', 'pieces', 'sites', 'check', 'clip', 'seconds'}}.\n"
+      "DBU throughout. space_limit_widths: spaces wider than this many typical widths are not pattern (0: keep all).\n"
+      "pieces=True: 'diagram' also holds the pieces as voronoi_polygons returns them (else they stream past, see\n"
+      "voronoi_polygons). csv, gds, gds_layer, dbu:\n"
+      "as in voronoi_polygons, and gds_cell. gauges_csv: also write the gauges there (gauges.csv, micrometres).\n"
+      "columns: write the two column blocks into this file (reals for every gauge, then ints) instead of bytes:\n"
+      "'gauges' is then {'count', 'file', 'reals': None, 'ints': None, 'paths'}, for the caller to map.\n"
+      "tiles: as in voronoi_polygons (with pieces=False).");
+
+  m.def(
+      "gauge_contexts",
+      [](const py::object& polys, const py::buffer& points, double radius, int threads) {
+        const LayerInput in(polys);
+        const Doubles at = doubles_of(points, 2, "points");
+        const std::int64_t r = std::llround(radius);
+        std::vector<std::uint64_t> ids;
+        {
+          py::gil_scoped_release unlocked;
+          const PolygonIndex ix(in.flat());
+          const BoxTree boxes(ix.size(), [&](std::size_t i) { return ix.box(i); });
+          ids = context_ids(ix, boxes, at.data, at.size() / 2, r, threads);
+        }
+        char* out = nullptr;
+        py::bytes b = blank_bytes(8 * ids.size(), out);
+        for (std::size_t i = 0; i < ids.size(); ++i)
+          for (int k = 0; k < 8; ++k) out[8 * i + std::size_t(k)] = char((ids[i] >> (8 * k)) & 0xffu);
+        return b;
+      },
+      py::arg("polygons"), py::arg("points"), py::arg("radius"), py::arg("threads") = 0,
+      "Context ids of points on a merged layer (docs/design.md, 'Gauge contexts'): for each point, the layer\n"
+      "clipped exactly to the square of half-side `radius` around it, taken up to translation and the eight\n"
+      "symmetries of the square, hashed. polygons: as gauges_polygons takes them; points: array('d') x0, y0,\n"
+      "x1, y1, ... in DBU (rounded to the nearest half DBU); radius in DBU (rounded to an integer, >= 1).\n"
+      "Returns bytes: one unsigned 64-bit id per point, little-endian (array('Q', ...) on this platform).");
+}
+
+}  // namespace linf::bind

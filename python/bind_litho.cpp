@@ -1,0 +1,139 @@
+// The lithography model: kernels (a preset's optics or a folder of ICCAD 2013 files), the
+// threshold rule, and the printability of gauges read from the gauge table's columns in place.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <string>
+
+#include "bind.hpp"
+#include "convert.hpp"
+#include "linf/litho/calibration.hpp"
+#include "linf/litho/optics.hpp"
+#include "linf/litho/printability.hpp"
+
+namespace linf::bind {
+
+namespace {
+
+template <class T>
+Strided<T> strided(const Column<T>& c) {
+  return c.values;
+}
+
+}  // namespace
+
+void bind_litho(py::module_& m) {
+  py::class_<litho::Kernels>(m, "LithoKernels", "SOCS kernels of an imaging model (docs/design.md, 'Lithography model').")
+      .def_property_readonly("period", [](const litho::Kernels& k) { return k.period; })
+      .def_property_readonly("count", [](const litho::Kernels& k) { return k.count(); })
+      .def_property_readonly("size", [](const litho::Kernels& k) { return k.size; })
+      .def_property_readonly("clear_field", &litho::Kernels::clear_field);
+
+  m.def(
+      "litho_kernels",
+      [](const std::string& preset, const std::string& folder, double period, double defocus) {
+        py::gil_scoped_release unlocked;
+        if (!folder.empty()) return litho::read_kernels(folder, period);
+        litho::Optics o = litho::optics_preset(preset);
+        o.defocus = defocus;
+        return litho::kernels_from_optics(o);
+      },
+      py::arg("preset") = "", py::arg("folder") = "", py::arg("period") = 2048.0, py::arg("defocus") = 0.0,
+      "The kernels of an optics preset (`duv193`, `euv`: computed, at `defocus` nm from best focus) or, with\n"
+      "`folder`, read from ICCAD 2013 files (scales.txt, fh*.bin) for a period of `period` nm. Bad input raises\n"
+      "ValueError.");
+
+  m.def(
+      "litho_window_images",
+      [](const py::object& polys, double dbu_nm, const std::vector<double>& cx, const std::vector<double>& cy,
+         const litho::Kernels& kernels, int m, int threads) {
+        const LayerInput in(polys);
+        std::vector<std::vector<double>> images;
+        {
+          py::gil_scoped_release unlocked;
+          images = litho::window_images(in.flat(), dbu_nm, cx, cy, kernels, m, threads);
+        }
+        py::list out;
+        for (const auto& v : images) out.append(bytes_of(v));
+        return out;
+      },
+      py::arg("polygons"), py::arg("dbu"), py::arg("cx"), py::arg("cy"), py::arg("kernels"), py::arg("m") = 128,
+      py::arg("threads") = 0,
+      "Pictures' aerial images: for each centre (cx[k], cy[k]) in DBU the window of the kernels' period centred\n"
+      "there, as gauge_printability clips it, imaged on an m x m grid: bytes of float64, value [j * m + i] at the\n"
+      "window's corner (the centre minus half the period) + (i, j) * period / m, in nm.");
+
+  m.def(
+      "calibrate_threshold",
+      [](const litho::Kernels& k, double width, double pitch) {
+        const litho::Calibration c = litho::calibrate_threshold(k, width, pitch);
+        py::dict d;
+        d["threshold"] = c.threshold;
+        d["pitch"] = c.pitch;
+        d["contrast"] = c.contrast;
+        return d;
+      },
+      py::arg("kernels"), py::arg("width"), py::arg("pitch"),
+      "The resist threshold at which endless lines of `width` nm at `pitch` nm print at their drawn width:\n"
+      "{'threshold', 'pitch' (as used), 'contrast'}. ValueError when the model does not resolve them.");
+
+  m.def(
+      "gauge_printability",
+      [](const py::object& polys, double dbu_nm, const py::buffer& cx, const py::buffer& cy, const py::buffer& x1,
+         const py::buffer& y1, const py::buffer& x2, const py::buffer& y2, const py::buffer& types, const py::buffer& cd,
+         const litho::Kernels& kernels, double threshold, const py::object& contexts, int threads,
+         const litho::Kernels* defocus, double dose) {
+        const LayerInput in(polys);
+        const auto ccx = column_of<double>(cx, "cx"), ccy = column_of<double>(cy, "cy");
+        const auto cx1 = column_of<double>(x1, "x1"), cy1 = column_of<double>(y1, "y1");
+        const auto cx2 = column_of<double>(x2, "x2"), cy2 = column_of<double>(y2, "y2");
+        const auto ct = column_of<std::int32_t>(types, "types");
+        const auto ccd = column_of<double>(cd, "cd");
+        litho::GaugeColumns g{strided(ccx), strided(ccy), strided(cx1), strided(cy1), strided(cx2),
+                              strided(cy2), strided(ct),  strided(ccd), {}};
+        py::buffer_info ids;
+        if (!contexts.is_none()) {
+          ids = py::buffer(contexts).request();
+          if (ids.ndim != 1 || ids.itemsize != 8 || (ids.format != "Q" && ids.format != "L" && ids.format != "B"))
+            throw py::value_error("contexts must be a one-dimensional buffer of unsigned 64-bit ids, array('Q')");
+          g.context.data = static_cast<const char*>(ids.ptr);
+          g.context.stride = ids.strides[0];
+          g.context.n = std::size_t(ids.shape[0]);
+        }
+        litho::Printability p;
+        const auto t0 = std::chrono::steady_clock::now();
+        {
+          py::gil_scoped_release unlocked;
+          p = litho::printability(in.flat(), dbu_nm, g, litho::PrintModel{&kernels, threshold, defocus, dose}, threads);
+        }
+        py::dict d;
+        d["printed_cd"] = bytes_of(p.printed_cd);
+        std::vector<std::uint8_t> fails(p.fails.size());
+        for (std::size_t i = 0; i < fails.size(); ++i) fails[i] = std::uint8_t(p.fails[i]);
+        d["fails"] = bytes_of(fails);
+        for (std::size_t i = 0; i < fails.size(); ++i) fails[i] = std::uint8_t(p.fails_nominal[i]);
+        d["fails_nominal"] = bytes_of(fails);
+        d["pv_band"] = bytes_of(p.pv_band);
+        d["score"] = bytes_of(p.score);
+        d["simulations"] = p.simulations;
+        d["shared"] = p.shared;
+        d["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return d;
+      },
+      py::arg("polygons"), py::arg("dbu"), py::arg("cx"), py::arg("cy"), py::arg("x1"), py::arg("y1"), py::arg("x2"),
+      py::arg("y2"), py::arg("types"), py::arg("cd"), py::arg("kernels"), py::arg("threshold"),
+      py::arg("contexts") = py::none(), py::arg("threads") = 0, py::arg("defocus") = py::none(),
+      py::arg("dose") = 0.0,
+      "Printability of gauges (docs/design.md, 'Printability of gauges'). polygons: the merged layer as\n"
+      "gauges_polygons takes it (DBU); dbu in nm; cx..cd: float64 columns in DBU (strided views of the gauge\n"
+      "table work), types: int32 (1 external = a space, the others a width); kernels from litho_kernels and\n"
+      "the resist threshold; contexts: optional array('Q') of ids (gauges of one type and id share one\n"
+      "simulation); dose > 0: the process window, corners at dose 1 - dose with the `defocus` kernels (None: in\n"
+      "focus) and 1 + dose in focus. Returns bytes columns 'printed_cd' (float64 nm, NaN when not measured),\n"
+      "'fails' (uint8: 0 none, 1 pinch, 2 bridge; the worst over nominal and the corners), 'fails_nominal',\n"
+      "'pv_band' (float64 nm, NaN without a window), 'score' (float64, lower = worse) and 'simulations',\n"
+      "'shared', 'seconds'.");
+}
+
+}  // namespace linf::bind

@@ -1,0 +1,179 @@
+// Tile jobs (tile_jobs.hpp, tiles.hpp build_tiled_jobs): the tiled pass planned here, each tile
+// built alone from its job's bytes (as on another host), gives the local pass's parts bit for
+// bit and in the same order, and the stream fed from them writes the same bytes; a job holds
+// only its tile's sites; malformed bytes and a runner that drops tiles are refused.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "diagram/tile_jobs.hpp"
+#include "linf/diagram/builder.hpp"
+#include "linf/diagram/diagram.hpp"
+#include "linf/gauges/gauge.hpp"
+#include "linf/geometry/sites.hpp"
+#include "linf/pipeline/stream.hpp"
+#include "layouts.hpp"
+
+using namespace linf;
+using linf::testing::block;
+
+namespace {
+
+// A part as bytes: its frame, then each piece's fields (not the padding).
+std::string bytes_of(const std::vector<Piece>& part, const Box& frame) {
+  std::string s(reinterpret_cast<const char*>(&frame), sizeof(Box));
+  for (const Piece& p : part) {
+    const double v[6] = {p.p.x, p.p.y, p.q.x, p.q.y, p.d1, p.d2};
+    s.append(reinterpret_cast<const char*>(v), sizeof(v));
+    const std::int32_t w[3] = {p.a, p.b, std::int32_t(p.kind)};
+    s.append(reinterpret_cast<const char*>(w), sizeof(w));
+  }
+  return s;
+}
+
+std::vector<std::string> parts(const Sites& s, const Box& clip, const BuildOptions& o, const TileRunner& runner,
+                               BuildStats* st = nullptr) {
+  std::vector<std::string> out;
+  build_parts(s, clip, o, st, [&](std::vector<Piece>& part, const Box& frame) { out.push_back(bytes_of(part, frame)); },
+              runner);
+  return out;
+}
+
+// Builds every job here, as a worker would from the bytes alone, with `threads` workers; keeps
+// the jobs seen.
+struct Inline {
+  int threads = 1;
+  std::vector<std::string> jobs;
+  TileRunner runner() {
+    return [this](const std::function<bool(std::string&)>& next, const std::function<void(const std::string&)>& done) {
+      std::string job;
+      while (next(job)) {
+        jobs.push_back(job);
+        done(build_tile_job(std::string(job), threads));  // a copy: nothing shared with the planner
+      }
+    };
+  }
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
+std::string tmp(const std::string& name) {
+  const char* d = std::getenv("TMPDIR");
+  return std::string(d && *d ? d : "/tmp") + "/linf_test_tile_jobs_" + name;
+}
+
+}  // namespace
+
+TEST(TileJobs, SamePartsInTheSameOrderAsTheLocalPass) {
+  const linf::testing::Style styles[] = {linf::testing::Style::Rectilinear, linf::testing::Style::Octilinear,
+                                         linf::testing::Style::AnyAngle};
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const Sites s = sites_of_polygons(merge_polygons(block(seed, styles[seed % 3], 12, 10)));
+    const Box clip = clip_box(s);
+    const double side = std::max(clip.x2 - clip.x1, clip.y2 - clip.y1) / 3;
+    for (double frac : {0.0, 0.3, 0.05}) {
+      BuildOptions o;
+      o.threads = 2;
+      o.tile_size = frac * side;
+      BuildStats st_local, st_jobs;
+      const std::vector<std::string> local = parts(s, clip, o, {}, &st_local);
+      for (int threads : {1, 2}) {
+        Inline run{threads, {}};
+        const std::vector<std::string> got = parts(s, clip, o, run.runner(), &st_jobs);
+        const std::string at = "seed " + std::to_string(seed) + " tile " + std::to_string(o.tile_size) +
+                               " worker threads " + std::to_string(threads);
+        ASSERT_EQ(got.size(), local.size()) << at;
+        for (std::size_t i = 0; i < got.size(); ++i) ASSERT_TRUE(got[i] == local[i]) << at << ": part " << i;
+        EXPECT_EQ(st_jobs.tiles, st_local.tiles) << at;
+        EXPECT_EQ(st_jobs.tasks, st_local.tasks) << at;
+        EXPECT_EQ(st_jobs.largest_tile_sites, st_local.largest_tile_sites) << at;
+        EXPECT_EQ(st_jobs.raw_pieces, st_local.raw_pieces) << at;
+        if (frac == 0.05) {
+          ASSERT_GT(run.jobs.size(), 4u) << at;
+          // A job holds its tile's sites (the halo's included), not the layer's: global ids
+          // ascending, each with its own site.
+          for (const std::string& bytes : run.jobs) {
+            const detail::TileJob job = detail::decode_job(bytes);
+            EXPECT_LT(job.sites.size(), s.sites.size() / 2) << at;
+            for (std::size_t i = 0; i < job.ids.size(); ++i) {
+              if (i) ASSERT_LT(job.ids[i - 1], job.ids[i]);
+              const Site& g = s.sites[std::size_t(job.ids[i])];
+              ASSERT_TRUE(job.sites[i].a == g.a && job.sites[i].b == g.b);
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(TileJobs, StreamFedByJobsWritesTheSameBytes) {
+  const std::vector<Polygon> polys = block(4, linf::testing::Style::Octilinear, 10, 8);
+  DiagramOptions o;
+  o.build.threads = 2;
+  o.build.tile_size = 150;
+  auto run = [&](const TileRunner& runner, const std::string& name, std::string& csv, std::string& gds) {
+    StreamOutputs so;
+    so.csv = tmp(name + ".csv"), so.gds = tmp(name + ".gds"), so.dbu = 0.001;
+    so.layers.layer = 7, so.layers.dbu = 0.001;
+    so.keep = measurable_pair;
+    StreamResult r = stream_voronoi(polys, o, so, runner);
+    EXPECT_TRUE(r.check.ok());
+    csv = slurp(so.csv), gds = slurp(so.gds);
+    std::remove(so.csv.c_str());
+    std::remove(so.gds.c_str());
+    return r;
+  };
+  std::string csv_local, gds_local, csv_jobs, gds_jobs;
+  const StreamResult local = run({}, "local", csv_local, gds_local);
+  Inline jobs{1, {}};
+  const StreamResult got = run(jobs.runner(), "jobs", csv_jobs, gds_jobs);
+  ASSERT_GT(jobs.jobs.size(), 1u);
+  ASSERT_GT(local.pieces, 1000u);
+  EXPECT_EQ(got.pieces, local.pieces);
+  EXPECT_EQ(got.counts, local.counts);
+  EXPECT_EQ(got.diagram.tiles, local.diagram.tiles);
+  EXPECT_TRUE(csv_jobs == csv_local) << "voronoi.csv differs";
+  EXPECT_TRUE(gds_jobs == gds_local) << "the drawing differs";
+  ASSERT_EQ(got.stretches.size(), local.stretches.size());
+  for (std::size_t i = 0; i < got.stretches.size(); ++i) {
+    const Stretch a = got.stretches[i], b = local.stretches[i];
+    ASSERT_EQ(a.a, b.a);
+    ASSERT_EQ(a.b, b.b);
+    ASSERT_EQ(a.length, b.length);
+    ASSERT_EQ(a.path.size(), b.path.size());
+  }
+}
+
+TEST(TileJobs, MalformedBytesAndLostTilesAreRefused) {
+  const Sites s = sites_of_polygons(merge_polygons(block(5, linf::testing::Style::Rectilinear, 6, 5)));
+  const Box clip = clip_box(s);
+  BuildOptions o;
+  o.threads = 1;
+  o.tile_size = 100;
+  Inline keep{1, {}};
+  parts(s, clip, o, keep.runner());
+  ASSERT_GT(keep.jobs.size(), 1u);
+  const std::string job = keep.jobs[0];
+  EXPECT_THROW(build_tile_job("not a job", 1), std::invalid_argument);
+  EXPECT_THROW(build_tile_job(job.substr(0, job.size() - 3), 1), std::invalid_argument);
+  std::string other = job;
+  other[sizeof(char[8])] ^= 1;  // the header's site size: another build of the core
+  EXPECT_THROW(build_tile_job(other, 1), std::invalid_argument);
+  // A runner that stops after one tile: no partial diagram.
+  const TileRunner one = [](const std::function<bool(std::string&)>& next,
+                            const std::function<void(const std::string&)>& done) {
+    std::string j;
+    if (next(j)) done(build_tile_job(j, 1));
+  };
+  EXPECT_THROW(parts(s, clip, o, one), std::runtime_error);
+}

@@ -1,0 +1,69 @@
+"""What every KLayout check script shares: the repository, the module's search path, the
+script's -rd arguments, expectations, and the exit status ctest reads.
+
+A check script is run as `klayout -b -r tests/klayout/check_X.py -rd name=value ...` and starts
+    import os
+    import sys
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from harness import arg, expect, finish, repo  # noqa: E402
+Importing the harness puts the repository's build/ (the compiled module) and plugin/python (the
+package) first on sys.path, so `from linf_opc import ...` follows it.
+
+Exit status: 1 if any expectation failed; else 77, which ctest reports as skipped
+(SKIP_RETURN_CODE), where an input the check needs is missing; else 0.
+"""
+import os
+import sys
+
+repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(repo, "build"))
+sys.path.insert(0, os.path.join(repo, "plugin", "python"))
+
+SKIP = 77
+failures = []
+# Print every expectation met as well ("ok:   what"), for scripts whose checks are a list to read.
+report_ok = False
+
+_required = object()
+
+
+def arg(name, default=_required):
+    """The value of `-rd name=value`; `default` where it is missing or empty. Without a default
+    the argument is required: its absence stops the script with a usage message (exit 2)."""
+    value = vars(sys.modules["__main__"]).get(name)
+    if value:
+        return value
+    if default is _required:
+        print("%s: missing -rd %s=..." % (_script(), name))
+        sys.exit(2)
+    return default
+
+
+def expect(cond, what):
+    """Records a failed expectation (the script goes on, to report them all) and prints it."""
+    if not cond:
+        failures.append(what)
+        print("FAIL: " + what)
+    elif report_ok:
+        print("ok:   " + what)
+    return cond
+
+
+def finish(summary="", missing=None):
+    """Prints the outcome and exits: 1 on failures; 77 with "SKIPPED: <missing> missing" where
+    `missing` names an input the check needs and did not find; else 0."""
+    tail = (": " + summary) if summary else ""
+    if failures:
+        print("%s FAILED, %d failed expectation(s)%s" % (_script(), len(failures), tail))
+        sys.exit(1)
+    if missing:
+        print("%s%s" % (_script(), tail))
+        print("SKIPPED: %s missing" % missing)
+        sys.exit(SKIP)
+    print("%s passed%s" % (_script(), tail))
+    sys.exit(0)
+
+
+def _script():
+    main = sys.modules["__main__"]
+    return os.path.splitext(os.path.basename(getattr(main, "__file__", "") or "check"))[0]
