@@ -6,8 +6,9 @@
 //
 // Not judged: ends on the clip box, ends at a site (clearance 0), ends shared with another piece
 // of the same pair (a bend of the bisector), ends too close to their own piece's other end or to
-// a site to step beyond, and points where a site is within the allowance of the owner without
-// tying it exactly (too close to call).
+// a site to step beyond, points where a site is within the allowance of the owner without
+// tying it exactly, and ends where a third site is as near as the pair just beyond (its region
+// may be a wedge thinner than the samples' angle): too close to call.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -120,8 +121,16 @@ inline EndsReport check_piece_ends(const Diagram& d) {
       const Vec2 n{-side * (e.y - o.y) / len, side * (e.x - o.x) / len};
       const Owner left = owner({x.x + n.x, x.y + n.y}), right = owner({x.x - n.x, x.y - n.y});
       if (left.site < 0 || right.site < 0) continue;  // too close to call
-      ++rep.judged;
       const bool same = (left.site == pc.a && right.site == pc.b) || (left.site == pc.b && right.site == pc.a);
+      // A third site as near as the pair at x, within what the sideways step can change (an
+      // L-inf distance moves by at most the step): its region may be a wedge starting at the
+      // end and thinner than the samples' angle, passing between them. Too close to call.
+      const double pair = std::max(dist_site(x.x, x.y, L[pc.a]), dist_site(x.x, x.y, L[pc.b]));
+      bool wedge = false;
+      for (std::size_t c = 0; c < L.size() && same && !wedge; ++c)
+        wedge = int(c) != pc.a && int(c) != pc.b && dist_site(x.x, x.y, L[c]) <= pair + 2 * side + tol;
+      if (wedge) continue;
+      ++rep.judged;
       if (!same) continue;
       std::ostringstream m;
       m.precision(12);
