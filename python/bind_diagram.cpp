@@ -18,7 +18,7 @@ void bind_diagram(py::module_& m) {
       "voronoi_polygons",
       [](const py::object& polys, bool check, int pairs, int threads, double tile, const std::string& csv,
          double dbu, bool with_pieces, const std::string& gds, int gds_layer, const std::string& gds_cell,
-         const py::object& tiles) {
+         const py::object& tiles, const py::object& progress) {
         const LayerInput in(polys);
         const TileRunner runner = runner_of(tiles);
         const StreamOutputs files = outputs_of(csv, dbu, gds, gds_layer, gds_cell);
@@ -26,20 +26,21 @@ void bind_diagram(py::module_& m) {
           WholeResult w;
           {
             py::gil_scoped_release unlocked;
-            w = voronoi_whole(in.flat(), options(check, pairs, threads, tile), files);
+            w = voronoi_whole(in.flat(), options(check, pairs, threads, tile, progress), files);
           }
           return stage_dict(w, !gds.empty());
         }
         StreamResult r;
         {
           py::gil_scoped_release unlocked;
-          r = stream_voronoi(in.flat(), options(check, pairs, threads, tile), files, runner);
+          r = stream_voronoi(in.flat(), options(check, pairs, threads, tile, progress), files, runner);
         }
         return stage_dict(r, !gds.empty());
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("pieces") = true,
       py::arg("gds") = "", py::arg("gds_layer") = 0, py::arg("gds_cell") = "VORONOI", py::arg("tiles") = py::none(),
+      py::arg("progress") = py::none(),
       "Diagram of polygons [(outer, [holes])], rings as [(x, y)] in integer DBU, or the same flat:\n"
       "(points, rings), points array('q') x0, y0, x1, y1, ..., rings array('q') of point counts, each outer\n"
       "ring followed by its holes with negative counts. Shapes are merged first.\n"
@@ -56,7 +57,10 @@ void bind_diagram(py::module_& m) {
       "'counts': pieces per kind. Raises DiagramError if the independent checker rejects the diagram.\n"
       "tiles: with pieces=False, a callable(next, done) that has the tiles built elsewhere: next() gives the next\n"
       "tile job's bytes (None when none is left), each job's result bytes (build_tile_job) go to done() in the\n"
-      "order the jobs were taken. Same pieces, same files.");
+      "order the jobs were taken. Same pieces, same files.\n"
+      "progress: a callable(stage, done, total): the stages' names as they start (done 0), and inside the\n"
+      "builder's and the merge's stages how many parts are done of how many, at most ten times a second, from\n"
+      "the core's threads (it is given the GIL); what it raises is reported and dropped.");
 
   m.def(
       "build_tile_job",

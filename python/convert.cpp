@@ -57,8 +57,23 @@ py::bytes blank_bytes(std::size_t n, char*& data) {
   return py::reinterpret_steal<py::bytes>(o);
 }
 
-DiagramOptions options(bool check, int pairs, int threads, double tile) {
+ProgressFn progress_of(const py::object& fn) {
+  if (fn.is_none()) return {};
+  PyObject* f = fn.ptr();  // borrowed: a copy of the ProgressFn must not touch reference counts
+  return [f](const char* stage, std::size_t done, std::size_t total) {
+    py::gil_scoped_acquire held;
+    try {
+      const py::handle watcher(f);
+      watcher(stage, done, total);
+    } catch (py::error_already_set& e) {
+      e.discard_as_unraisable("the progress callback");
+    }
+  };
+}
+
+DiagramOptions options(bool check, int pairs, int threads, double tile, const py::object& progress) {
   DiagramOptions o;
+  o.progress = progress_of(progress);
   o.check = check;
   o.checker.crossing_pairs = pairs;
   o.build.threads = threads;

@@ -32,6 +32,11 @@ using PyPolygons = std::vector<std::pair<std::vector<XY>, std::vector<std::vecto
 // and releases it again while next and done work. `runner` must outlive the TileRunner.
 TileRunner runner_of(const py::object& runner);
 
+// A Python callable(stage, done, total) as the core's ProgressFn (linf/util/progress.hpp); None:
+// none. Called from the core's threads, it takes the GIL; an exception it raises is reported
+// as unraisable and dropped (the core is never unwound from a watcher). `fn` must outlive it.
+ProgressFn progress_of(const py::object& fn);
+
 // A contiguous buffer of signed 64-bit integers (array('q')).
 const std::int64_t* int64s_of(const py::buffer_info& info, const char* name);
 
@@ -94,7 +99,7 @@ py::bytes bytes_of(const std::vector<T>& v) {
 // and a C++ buffer copied into bytes would hold them twice.
 py::bytes blank_bytes(std::size_t n, char*& data);
 
-DiagramOptions options(bool check, int pairs, int threads, double tile = 0);
+DiagramOptions options(bool check, int pairs, int threads, double tile = 0, const py::object& progress = py::none());
 
 // What is taken from the diagram while the core holds it: voronoi.csv and the pieces as GDSII
 // for the editor to read (`gds_layer`: the input's layer number, datatypes 200 + kind).

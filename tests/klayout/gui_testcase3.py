@@ -148,6 +148,9 @@ def gauges_step():
         say("progress bar stages: %s" % bar.Bar.last)
         expect(bar.Bar.last == ["reading the layer", "diagram and gauges (core)", "pitch and contexts (core)",
                                 "drawing", "marker browser"], "the progress bar names each stage")
+        say("the core's steps in the bar: %s" % bar.Bar.last_steps)
+        expect(bar.Bar.last_steps[-1:] == ["placing the gauges"] and len(bar.Bar.last_steps) >= 2,
+               "the bar names the core's own steps inside its call")
         total, groups, drawn = menu.gauges_of_current_layer.last
         lines = {dt: cell.shapes(ly.find_layer(L, dt)).size() if ly.find_layer(L, dt) is not None else 0
                  for dt in range(210, 215)}
@@ -254,6 +257,7 @@ def flow_step():
         seconds, took = freeze.measure(lambda: mw.menu().action("tools_menu.linf_opc.flow").trigger())
         say("longest event-loop freeze during 'Run OPC pattern flow': %.2f s %s (action %.1f s)"
             % (seconds, freeze.where, took))
+        expect(seconds < FREEZE_LIMIT, "the flow never freezes the editor %g s (%.2f s)" % (FREEZE_LIMIT, seconds))
         say("progress bar stages: %s" % bar.Bar.last)
         expect(bar.Bar.last[:3] == ["reading the layer", "diagram and gauges", "selection"]
                and "split" in bar.Bar.last, "the flow's stages named in the progress bar")

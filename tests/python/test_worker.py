@@ -73,5 +73,37 @@ class Worker(unittest.TestCase):
             del os.environ["LINF_OPC_WORKER_FAULT"]
 
 
+STEPS = ["merging the polygons", "building the diagram", "building the far field", "joining and checking the pieces",
+         "checking the diagram", "joining the stretches", "placing the gauges"]
+WIRES = [([(x, 0), (x + 20, 0), (x + 20, 2000), (x, 2000)], []) for x in range(0, 40 * 400, 40)]
+
+
+class CoreSteps(unittest.TestCase):
+    """The core tells a watcher its steps, in order, in this process and through the worker."""
+
+    def test_in_process(self):
+        told = []
+        gauges = core.gauges_polygons(WIRES, progress=lambda step, done, total: told.append((step, done, total)))
+        self.assertEqual(gauges["gauges"], core.gauges_polygons(WIRES)["gauges"])  # told, not changed
+        names = [s for s, _, _ in told]
+        self.assertEqual(sorted(set(names), key=names.index), STEPS)
+        self.assertEqual(sorted(names, key=STEPS.index), names)  # never back to an earlier step
+        self.assertTrue(all(0 <= d <= t for _, d, t in told if t))
+        self.assertGreater(max(t for _, _, t in told), 1)  # the builder counted its tasks
+
+    def test_a_raising_watcher_is_dropped(self):
+        def watcher(step, done, total):
+            raise RuntimeError("a watcher's own fault")
+        self.assertEqual(core.gauges_polygons(WIRES, progress=watcher)["gauges"], core.gauges_polygons(WIRES)["gauges"])
+
+    def test_through_the_worker(self):
+        told = []
+        with core.running_with(worker.Runner(failures=tempfile.mkdtemp(prefix="linf_worker_"))):
+            core.gauges_polygons(WIRES, progress=lambda *step: told.append(step))
+        self.assertTrue(told)
+        self.assertTrue(all(s in STEPS for s, _, _ in told), told)
+        self.assertEqual(told[-1][0], "placing the gauges")
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

@@ -7,6 +7,7 @@
 
 #include "subdivision.hpp"
 #include "tiles.hpp"
+#include "util/progress_meter.hpp"
 
 namespace linf {
 
@@ -15,9 +16,11 @@ using namespace detail;
 
 // One pass of the subdivision over `root` with the sites `ids`, skipping boxes inside `hole`
 // and the parts of pieces there: the far field, or everything in one pass. The top levels,
-// breadth first, become the workers' tasks. Boxes and pieces are relative to `origin`.
+// breadth first, become the workers' tasks, counted as the `stage`'s parts. Boxes and pieces
+// are relative to `origin`.
 std::vector<Piece> run(const SiteList& sites, const Point& origin, std::vector<int> ids, const Box& root,
-                       const Box* hole, const BuildOptions& opt, double tau, BuildStats& st) {
+                       const Box* hole, const BuildOptions& opt, double tau, BuildStats& st, const ProgressFn& progress,
+                       const char* stage) {
   const Model model(sites, std::move(ids), opt, tau, origin);
   std::vector<int> all(model.S.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
@@ -36,8 +39,11 @@ std::vector<Piece> run(const SiteList& sites, const Point& origin, std::vector<i
     tasks.swap(next);
   }
   std::vector<Builder> workers(worker_count(tasks.size(), opt.threads), Builder(model, root, hole));
-  parallel_for(tasks.size(), opt.threads,
-               [&](unsigned w, std::size_t i) { workers[w].process(tasks[i].first, tasks[i].second); });
+  ProgressMeter meter(progress, stage, tasks.size());
+  parallel_for(tasks.size(), opt.threads, [&](unsigned w, std::size_t i) {
+    workers[w].process(tasks[i].first, tasks[i].second);
+    meter.step();
+  });
   std::vector<Piece> part;
   collect(model, workers, st, part);
   return part;
@@ -66,7 +72,7 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
 }
 
 void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
-                 const PartSink& sink, const TileRunner& runner) {
+                 const PartSink& sink, const TileRunner& runner, const ProgressFn& progress) {
   if (sites.sites.size() < 2) return;
   Coord ox1 = INT64_MAX, oy1 = INT64_MAX, ox2 = INT64_MIN, oy2 = INT64_MIN;
   for (const Site& t : sites.sites) {
@@ -92,7 +98,8 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
   const Box inner{x1 - margin, y1 - margin, x2 + margin, y2 + margin};
   if (!opt.far_field_pass || inner.x1 <= lclip.x1 || inner.y1 <= lclip.y1 || inner.x2 >= lclip.x2 ||
       inner.y2 >= lclip.y2) {
-    std::vector<Piece> part = run(sites.sites, origin, all, lclip, nullptr, opt, tau, st);
+    std::vector<Piece> part =
+        run(sites.sites, origin, all, lclip, nullptr, opt, tau, st, progress, "building the diagram");
     if (stats) *stats = st;
     to_layout(part, origin);
     sink(part, clip);
@@ -112,12 +119,14 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
     sink(part, shifted(frame, double(origin.x), double(origin.y)));
   };
   // The tiles here or by the runner (same parts, same order); the far field is built here.
-  if (runner) build_tiled_jobs(sites.sites, origin, inner, opt, tau, st, inner_sink, runner);
-  else build_tiled(sites.sites, origin, inner, opt, tau, st, inner_sink);
+  if (runner) build_tiled_jobs(sites.sites, origin, inner, opt, tau, st, inner_sink, runner, progress);
+  else build_tiled(sites.sites, origin, inner, opt, tau, st, inner_sink, progress);
   std::sort(border.begin(), border.end());
   border.erase(std::unique(border.begin(), border.end()), border.end());
   if (border.size() < 2) border = all;  // one site owns the whole border: let the pass decide
-  std::vector<Piece> far = run(sites.sites, origin, std::move(border), lclip, &inner, opt, tau, st);
+  std::vector<Piece> far =
+      run(sites.sites, origin, std::move(border), lclip, &inner, opt, tau, st, progress,
+          "building the far field");
   if (stats) *stats = st;
   // The far field's pieces lie outside the inner box; its vertices on that box are shared.
   to_layout(far, origin);
@@ -133,7 +142,8 @@ void join_pair(std::vector<Piece>& pieces) {
   pieces.swap(joined);
 }
 
-std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats) {
+std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
+                               const ProgressFn& progress) {
   // Every tile's joined pieces are appended to one vector with room for the usual 3-3.5 pieces
   // a site reserved at once: its pages are committed only as pieces are written, so nothing is
   // ever copied or held twice (a growing vector would hold up to three times the pieces while
@@ -142,7 +152,8 @@ std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const Build
   if (sites.sites.size() < 2) return raw;
   raw.reserve(std::size_t(4.5 * double(sites.sites.size())) + 64);
   build_parts(sites, clip, opt, stats,
-              [&](std::vector<Piece>& part, const Box&) { raw.insert(raw.end(), part.begin(), part.end()); });
+              [&](std::vector<Piece>& part, const Box&) { raw.insert(raw.end(), part.begin(), part.end()); },
+              TileRunner{}, progress);
   join_pieces(raw);
   return raw;
 }

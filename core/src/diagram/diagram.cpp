@@ -22,12 +22,13 @@ Result finish(Sites sites, const DiagramOptions& opt, double seconds_merge) {
   d.clip = clip_box(d.sites);
   auto t0 = std::chrono::steady_clock::now();
   BuildStats st;
-  d.pieces = build_pieces(d.sites, d.clip, opt.build, &st);
+  d.pieces = build_pieces(d.sites, d.clip, opt.build, &st, opt.progress);
   d.tiles = st.tiles, d.tile_tasks = st.tasks, d.largest_tile_sites = st.largest_tile_sites;
   for (Piece& p : d.pieces) p.kind = classify(d.sites, p);
   d.seconds_build = since(t0);
   d.attempts = 1;
   if (opt.check) {
+    if (opt.progress) opt.progress("checking the diagram", 0, 0);
     t0 = std::chrono::steady_clock::now();
     CheckOptions co = opt.checker;
     co.threads = opt.build.threads;

@@ -12,6 +12,7 @@
 
 #include "linf/util/paged.hpp"
 #include "tile_jobs.hpp"
+#include "util/progress_meter.hpp"
 
 namespace linf::detail {
 
@@ -260,7 +261,7 @@ class Plan {
 }  // namespace
 
 void build_tiled(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt, double tau,
-                 BuildStats& st, const PartSink& sink) {
+                 BuildStats& st, const PartSink& sink, const ProgressFn& progress) {
   Plan plan(sites, origin, root, opt, tau);
   const std::size_t per = plan.per, ntiles = plan.ntiles;
   const std::vector<Box>& tasks = plan.tasks;
@@ -284,17 +285,22 @@ void build_tiled(const SiteList& sites, const Point& origin, const Box& root, co
     if (failed) std::rethrow_exception(std::exchange(failed, nullptr));
   };
   int slot = 0;
+  ProgressMeter meter(progress, "building the diagram", ntiles * ntiles * per * per);
   try {
     for (std::size_t tj = 0; tj < ntiles; ++tj)
       for (std::size_t ti = 0; ti < ntiles; ++ti) {
         auto task_of = [&](std::size_t k) { return plan.task_of(tj, ti, k); };
         std::vector<int> ids = plan.gather_tile(tj, ti, halo);
-        if (ids.size() < 2) continue;
+        if (ids.size() < 2) {
+          meter.step(per * per);
+          continue;
+        }
         auto model = std::make_unique<const Model>(sites, std::move(ids), opt, tau, origin);
         std::vector<Builder> workers(nw, Builder(*model, root, nullptr));
         for (std::size_t w = 0; w < nw; ++w) workers[w].out.swap(raw[slot][w]);
         parallel_for(per * per, opt.threads, [&](unsigned w, std::size_t k) {
           workers[w].process(tasks[task_of(k)], halo[k]);
+          meter.step();
         });
         const Box frame = plan.frame(tj, ti);
         ++st.tiles;
@@ -325,18 +331,23 @@ void build_tiled(const SiteList& sites, const Point& origin, const Box& root, co
 }
 
 void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt,
-                      double tau, BuildStats& st, const PartSink& sink, const TileRunner& runner) {
+                      double tau, BuildStats& st, const PartSink& sink, const TileRunner& runner,
+                      const ProgressFn& progress) {
   Plan plan(sites, origin, root, opt, tau);
   std::vector<std::vector<int>> halo;
   std::size_t next_tile = 0;  // row by row, as the local pass
   const std::size_t count = plan.ntiles * plan.ntiles;
+  ProgressMeter meter(progress, "building the diagram's tiles", count);
   auto next = [&](std::string& bytes) {
     while (next_tile < count) {
       const std::size_t tj = next_tile / plan.ntiles, ti = next_tile % plan.ntiles;
       ++next_tile;
       TileJob job;
       job.ids = plan.gather_tile(tj, ti, halo);
-      if (job.ids.size() < 2) continue;  // as the local pass: no pieces
+      if (job.ids.size() < 2) {  // as the local pass: no pieces
+        meter.step();
+        continue;
+      }
       job.opt = opt;
       job.origin = origin, job.root = root, job.frame = plan.frame(tj, ti), job.tau = tau;
       job.sites.reserve(job.ids.size());
@@ -359,6 +370,7 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
   auto done = [&](const std::string& bytes) {
     TileResult r = decode_result(bytes);
     ++received;
+    meter.step();
     st.tiles += r.stats.tiles;
     st.tasks += r.stats.tasks;
     st.largest_tile_sites = std::max(st.largest_tile_sites, r.stats.largest_tile_sites);

@@ -18,13 +18,14 @@ namespace linf::detail {
 
 // Pieces (global site ids, joined within each tile, not across tiles) of the diagram inside
 // `root`, handed to `sink` tile by tile with the tile's box. Boxes and pieces are relative to
-// `origin` (bounds.hpp, shifted); the sites are not.
+// `origin` (bounds.hpp, shifted); the sites are not. `progress` is told of the tasks built.
 void build_tiled(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt, double tau,
-                 BuildStats& st, const PartSink& sink);
+                 BuildStats& st, const PartSink& sink, const ProgressFn& progress = {});
 
 // The same parts in the same order, each tile built by `runner` from a job (tile_jobs.hpp)
 // holding only the tile's sites: planned and gathered here, built wherever the runner sends it.
 void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt,
-                      double tau, BuildStats& st, const PartSink& sink, const TileRunner& runner);
+                      double tau, BuildStats& st, const PartSink& sink, const TileRunner& runner,
+                      const ProgressFn& progress = {});
 
 }  // namespace linf::detail

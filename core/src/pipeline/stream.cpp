@@ -18,6 +18,7 @@
 #include "linf/diagram/classify.hpp"
 #include "linf/io/csv.hpp"
 #include "linf/geometry/sites.hpp"
+#include "util/progress_meter.hpp"
 
 namespace linf {
 
@@ -129,6 +130,7 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
   StreamResult r;
   Diagram& d = r.diagram;
   auto t0 = std::chrono::steady_clock::now();
+  if (opt.progress) opt.progress("merging the polygons", 0, 0);
   d.sites = sites_of_polygons(merge_polygons(polygons, std::size_t(1) << 16, opt.build.threads).view());
   d.seconds_merge = since(t0);
   d.clip = clip_box(d.sites);
@@ -158,7 +160,7 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
       t_stretches += since(t);
     }
     runs.add(part);
-  }, tiles);
+  }, tiles, opt.progress);
   d.seconds_build = since(t0) - t_stretches;
   d.tiles = st.tiles, d.tile_tasks = st.tasks, d.largest_tile_sites = st.largest_tile_sites;
 
@@ -196,7 +198,11 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
     starts.clear();
   };
   t0 = std::chrono::steady_clock::now();
+  std::uint64_t raw = 0;
+  for (const Runs::Run& run : runs.runs()) raw += run.end - run.first;
+  detail::ProgressMeter meter(opt.progress, opt.check ? "joining and checking the pieces" : "joining the pieces", raw);
   merge(runs, [&](std::vector<Piece>& group) {
+    meter.step(group.size());
     join_pair(group);
     starts.push_back(batch.size());
     for (Piece p : group) {
@@ -210,6 +216,7 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
   flush();
 
   if (checker) {
+    if (opt.progress) opt.progress("checking the diagram", 0, 0);
     const auto t = std::chrono::steady_clock::now();
     r.check = checker->finish();
     d.seconds_check += since(t);
@@ -227,6 +234,7 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
     throw DiagramError(what, r.check);
   }
   if (stretches) {
+    if (opt.progress) opt.progress("joining the stretches", 0, 0);
     const auto t1 = std::chrono::steady_clock::now();
     r.stretches = stretches->finish();
     t_stretches += since(t1);

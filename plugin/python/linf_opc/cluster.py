@@ -43,8 +43,13 @@ def parse_address(text):
 def _quiet():
     # Dask's own log lines (reconnects, a worker lost and its tasks rerun) are not the tool's
     # output: only errors that end the run are said, in one line.
-    for name in ("distributed", "tornado", "asyncio"):
-        logging.getLogger(name).setLevel(logging.CRITICAL)
+    # Dask's logging configuration gives some children a level of their own (distributed.client:
+    # warning, which said "Couldn't gather 1 keys, rescheduling" when a worker was lost), so
+    # every logger of theirs is set, not only the roots.
+    roots = ("distributed", "tornado", "asyncio")
+    for name in list(roots) + list(logging.root.manager.loggerDict):
+        if name.split(".")[0] in roots:
+            logging.getLogger(name).setLevel(logging.CRITICAL)
 
 
 def _reachable(address):

@@ -40,7 +40,7 @@ class Diagram:
 
 
 def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=1.0, with_pieces=True,
-            draw_layer=None, draw_cell="VORONOI", threads=0):
+            draw_layer=None, draw_cell="VORONOI", threads=0, progress=None):
     """tile: side of the builder's tiles in DBU; 0 one tile, -1 automatic. The diagram is the
     same for every tile size; tiles bound the memory the builder holds at once.
     csv_path: the core also writes voronoi.csv there (micrometres, `dbu`).
@@ -48,11 +48,12 @@ def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=
     (datatypes 200 + kind; one cell named draw_cell).
     with_pieces=False: no Python object per piece (a full layer has tens of millions of them):
     Diagram.pieces is None, n_pieces and counts() remain.
-    threads: builder workers, 0 one a core (benchmarks compare at equal threads)."""
+    threads: builder workers, 0 one a core (benchmarks compare at equal threads).
+    progress: callable(stage, done, total), told how far the core is (Progress.core)."""
     t0 = time.perf_counter()
     raw, gds = drawing.drawn_by(
         lambda gds: core.voronoi_polygons(core_input(polygons), check, check_pairs, threads, tile=tile, csv=csv_path or "",
                                           dbu=dbu, pieces=with_pieces, gds=gds, gds_layer=draw_layer or 0,
-                                          gds_cell=draw_cell),
+                                          gds_cell=draw_cell, progress=progress),
         draw_layer is not None)
     return Diagram(raw, time.perf_counter() - t0, csv_path, gds)

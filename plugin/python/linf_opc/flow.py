@@ -140,7 +140,7 @@ def run(inp, args, progress=None, model=None):
     result = gauge_stage.compute(inp.polygons, draw_layer=inp.layer if want.diagram else None, tile=inp.tile,
                                  csv_path=inp.file("voronoi.csv") if want.diagram else None, dbu=inp.dbu,
                                  gauges_csv=inp.file("gauges.csv") if want.all_gauges and model is None else None,
-                                 draw_cell=inp.cell.name)
+                                 draw_cell=inp.cell.name, progress=p.core)
     p.done("%s polygons, %s pieces, %s gauges" % (count(result.diagram["polygons"]), count(result.diagram["pieces"]),
                                                   count(len(result.gauges))))
     if model is not None:

@@ -177,7 +177,8 @@ def voronoi_of_current_layer():
         bar.start("reading the layer")
         mw, view, cv, info, polygons = _layer_polygons()
         bar.start("diagram (core)")
-        diagram = diagram_stage.compute(polygons, dbu=cv.layout().dbu, with_pieces=False, draw_layer=info.layer)
+        diagram = diagram_stage.compute(polygons, dbu=cv.layout().dbu, with_pieces=False, draw_layer=info.layer,
+                                        progress=bar.core)
         bar.start("drawing")
         ly = cv.layout()
         # Drawn within the layer's box: "zoom fit" shows the layout, not rays (voronoi.oas keeps them).
@@ -198,7 +199,7 @@ def gauges_of_current_layer():
         bar.start("reading the layer")
         mw, view, cv, info, polygons = _layer_polygons()
         bar.start("diagram and gauges (core)")
-        result = gauge_stage.compute(polygons)
+        result = gauge_stage.compute(polygons, progress=bar.core)
         ly = cv.layout()
         # Drawn for reading: the representatives of the most critical (type, context) groups, the
         # context that of a 7 x 7 window (radius 3.5 pitches); the marker browser holds the same.
@@ -246,7 +247,7 @@ def select_patterns():
             _warn("No markers in %s." % markers.source)
             raise _Stop()
         bar.start("diagram and gauges (core)")
-        result = gauge_stage.compute(polygons)
+        result = gauge_stage.compute(polygons, progress=bar.core)
         bar.start("selection (core)")
         if pitch is None:
             pitch = selection_stage.pitch_of(result.gauges)

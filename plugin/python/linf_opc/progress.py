@@ -1,6 +1,6 @@
 """What a run is doing, while it runs: the batch writes one line a stage on stderr with its time
-and counts, and during a long stage a percentage every few seconds where Python knows how far
-it is; a stage that is one core call says when it starts and when it ends. stdout keeps the
+and counts, and during a long stage a percentage every few seconds where Python or the core
+knows how far it is (a core call names its own steps: "building the diagram 40%"). stdout keeps the
 command's one summary line. The editor passes its progress bar's step instead (on_stage), and
 -rd quiet=1 silences the lines."""
 import sys
@@ -61,6 +61,16 @@ class Progress:
     def done(self, counts=""):
         """The stage ended: its time and counts."""
         self.say("%s %.1f s%s" % (self.stage, time.perf_counter() - self._t0, ": " + counts if counts else ""))
+
+    def core(self, step, done, total):
+        """Inside a stage that is one core call: the core's own step ("building the diagram") and,
+        where it counts parts, how many of how many; said once `every` seconds have passed since
+        the last line. Called from the core's threads (which hold the GIL while it runs)."""
+        now = time.perf_counter()
+        if now - self._last >= self.every:
+            self._last = now
+            self.say("%s: %s%s (%.0f s)" % (self.stage, step, " %d%%" % (100 * done // total) if total else "",
+                                            now - self._t0))
 
     def fraction(self, done, total):
         """Inside a stage: its percentage, once `every` seconds have passed since the last line."""

@@ -89,7 +89,7 @@ def cmd_voronoi(args):
     inp = read(args, p)
     s = diagram_output.write_voronoi(inp, computed(p, "diagram", inp, lambda: diagram_stage.compute(
         inp.polygons, tile=inp.tile, csv_path=inp.file("voronoi.csv"), dbu=inp.dbu, with_pieces=False,
-        draw_layer=inp.layer, draw_cell=inp.cell.name)))
+        draw_layer=inp.layer, draw_cell=inp.cell.name, progress=p.core)))
     output.write_json(s, inp.file("summary.json"))
     return voronoi_line(s, inp.dir)
 
@@ -111,7 +111,7 @@ def cmd_gauges(args):
     window = arguments.parse_window(args["window"], inp.dbu) if args.get("window") else None
     result = printability(p, inp, computed(p, "diagram and gauges", inp, lambda: gauge_stage.compute(
         inp.polygons, tile=inp.tile, dbu=inp.dbu,
-        gauges_csv=inp.file("gauges.csv") if window is None and model is None else None)), model)
+        gauges_csv=inp.file("gauges.csv") if window is None and model is None else None, progress=p.core)), model)
     gauges = result.gauges if window is None else gauge_stage.most_critical_in(result.gauges, window)
     p.start("writing the gauges", "%s gauges" % count(len(gauges)))
     s = gauge_output.write_gauges(inp, result, gauges, arguments.report_max(args), window, tick=p.fraction)

@@ -25,8 +25,11 @@ from . import core
 PACKAGE_PARENT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # for linf_opc.cluster
 PYTHON = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable
 
+RECORD = 128  # bytes of the progress file's record: "step<TAB>done<TAB>total", padded
+
 CHILD = r"""
 import os, pickle, sys
+RECORD = RECORD_BYTES
 sys.path.insert(0, sys.argv[1])
 fault = os.environ.get("LINF_OPC_WORKER_FAULT")
 if fault == "crash":
@@ -37,6 +40,11 @@ if fault == "hang":
 import linf_opc_core as core
 name, args, kwargs = pickle.load(sys.stdin.buffer)
 scheduler = kwargs.pop("scheduler", None)
+told = kwargs.pop("progress_file", None)
+if told:  # the core's steps for the parent's bar: one fixed-size record, rewritten in place
+    fd = os.open(told, os.O_WRONLY)
+    kwargs["progress"] = lambda step, done, total: os.pwrite(
+        fd, ("%s\t%d\t%d\n" % (step, done, total)).encode()[:RECORD].ljust(RECORD), 0)
 try:
     if scheduler:  # the tiles on a Dask cluster (cluster.py): this process is its client
         sys.path.insert(0, sys.argv[2])
@@ -55,7 +63,7 @@ except ValueError as e:
 except Exception as e:
     result = ("Error", "%s: %s" % (type(e).__name__, e))
 pickle.dump(result, sys.stdout.buffer, protocol=pickle.HIGHEST_PROTOCOL)
-"""
+""".replace("RECORD_BYTES", str(RECORD))
 
 
 def _picklable(value):
@@ -68,6 +76,17 @@ def _picklable(value):
     if isinstance(value, tuple):
         return tuple(_picklable(v) for v in value)
     return value
+
+
+def _step(path):
+    """The core's last step (step, done, total) from the progress file, or None (not written
+    yet, or caught while being rewritten)."""
+    try:
+        with open(path, "rb") as f:
+            fields = f.read(RECORD).decode(errors="replace").split("\n")[0].split("\t")
+        return (fields[0], int(fields[1]), int(fields[2])) if len(fields) == 3 else None
+    except (OSError, ValueError):
+        return None
 
 
 class WorkerError(RuntimeError):
@@ -107,6 +126,22 @@ class Runner:
         self.seconds = seconds if seconds is not None else (float(env) if env else None)
 
     def __call__(self, name, args, kwargs):
+        # A progress callable stays here: the child writes the core's steps to a file that the
+        # wait loop reads and hands to it.
+        kwargs = dict(kwargs)
+        watcher = kwargs.pop("progress", None)
+        told = None
+        if watcher is not None:
+            fd, told = tempfile.mkstemp(prefix="linf_opc-progress-")
+            os.close(fd)
+            kwargs["progress_file"] = told
+        try:
+            return self._call(name, args, kwargs, watcher, told)
+        finally:
+            if told:
+                os.unlink(told)
+
+    def _call(self, name, args, kwargs, watcher, told):
         payload = pickle.dumps((name, [_picklable(a) for a in args], {k: _picklable(v) for k, v in kwargs.items()}),
                                protocol=pickle.HIGHEST_PROTOCOL)
         # Output and messages go to files, not pipes: a pipe the parent does not drain while it
@@ -114,7 +149,7 @@ class Runner:
         with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
             with subprocess.Popen([PYTHON, "-c", CHILD, core.MODULE_DIR, PACKAGE_PARENT], stdin=subprocess.PIPE, stdout=out,
                                   stderr=err, preexec_fn=_limits) as child:
-                self._watch(child, payload, name)
+                self._watch(child, payload, name, watcher, told)
             err.seek(0)
             message = err.read().decode(errors="replace").strip()
             if child.returncode != 0:
@@ -137,15 +172,16 @@ class Runner:
             raise UsageError(value)
         raise WorkerError(self._saved("failed: " + value, payload, name))
 
-    def _watch(self, child, payload, name):
+    def _watch(self, child, payload, name, watcher=None, told=None):
         """Feeds the child and waits for it: the time limit, and cancel (any exception from
-        the wait callback) kill it."""
+        the wait callback) kill it. The core's steps in the file `told` go to `watcher`."""
         try:
             child.stdin.write(payload)
             child.stdin.close()
         except BrokenPipeError:
             pass  # the child died at once: its exit code tells
         t0 = time.monotonic()
+        last = None
         try:
             while child.poll() is None:
                 elapsed = time.monotonic() - t0
@@ -154,14 +190,27 @@ class Runner:
                     child.wait()
                     raise WorkerError(self._saved("did not finish within %g s and was stopped" % self.seconds,
                                                   payload, name))
+                last = self._tell(watcher, told, last)
                 self.wait(elapsed)
                 time.sleep(0.1)
+            self._tell(watcher, told, last)  # the last step, also of a call shorter than a poll
         except WorkerError:
             raise
         except BaseException:
             child.kill()
             child.wait()
             raise Cancelled("cancelled")
+
+    @staticmethod
+    def _tell(watcher, told, last):
+        """The core's step, if it changed since `last`, to the watcher; the step told."""
+        if watcher is None:
+            return last
+        step = _step(told)
+        if step is not None and step != last:
+            watcher(*step)
+            return step
+        return last
 
     def _saved(self, why, payload, name):
         try:

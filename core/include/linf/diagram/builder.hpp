@@ -21,6 +21,7 @@
 
 #include "linf/geometry/piece.hpp"
 #include "linf/geometry/site.hpp"
+#include "linf/util/progress.hpp"
 
 namespace linf {
 
@@ -54,7 +55,7 @@ struct BuildStats {
 // Straight pieces with owners and clearances; kinds are left for the classifier.
 // Pieces of one edge are joined where they continue each other in a straight line.
 std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const BuildOptions& opt = {},
-                               BuildStats* stats = nullptr);
+                               BuildStats* stats = nullptr, const ProgressFn& progress = {});
 
 // The order build_pieces leaves its pieces in: owner pair, then position.
 bool join_order(const Piece& x, const Piece& y);
@@ -81,9 +82,11 @@ using TileRunner = std::function<void(const std::function<bool(std::string& job)
                                       const std::function<void(const std::string& result)>& done)>;
 
 // build_parts with the tiles built by `runner` (if empty, as build_parts): the same parts in
-// the same order, bit for bit. The far field (the second pass) is built here.
+// the same order, bit for bit. The far field (the second pass) is built here. `progress` is
+// told of the tasks built (tiled: of the tiles' tasks, or of the runner's tiles), then of the
+// far field's.
 void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
-                 const PartSink& sink, const TileRunner& runner);
+                 const PartSink& sink, const TileRunner& runner, const ProgressFn& progress = {});
 
 // One tile job's result bytes from its bytes, with `threads` workers (0: one a core): the
 // same bytes on every host and for every thread count. Throws std::invalid_argument for bytes

@@ -13,6 +13,7 @@
 #include "linf/geometry/piece.hpp"
 #include "linf/geometry/polygons.hpp"
 #include "linf/geometry/site.hpp"
+#include "linf/util/progress.hpp"
 
 namespace linf {
 
@@ -20,6 +21,7 @@ struct DiagramOptions {
   BuildOptions build;
   bool check = true;          // run the checker on the result
   CheckOptions checker;
+  ProgressFn progress;        // told of the stages and of the builder's tasks (util/progress.hpp)
 };
 
 // Thrown when the checker rejects a diagram: a wrong diagram is never handed on silently.
