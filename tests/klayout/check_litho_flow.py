@@ -23,13 +23,12 @@ import json
 import math
 import os
 import shutil
-import subprocess
 import sys
 from array import array
 from collections import Counter
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import arg, batch, expect, finish, repo  # noqa: E402
 
 work = arg("work", "/tmp/linf_litho_check")
 MODEL = arg("litho", "euv")
@@ -39,20 +38,7 @@ WIDTHS = ("internal", "sandwich", "comb", "T")
 
 
 def run(out, cmd, *extra, ok=True):
-    shutil.rmtree(out, ignore_errors=True)
-    args = ["-rd", "cmd=" + cmd, "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"), "-rd", "out=" + out,
-            "-rd", "quiet=1"]
-    if arg("cell", None):
-        args += ["-rd", "cell=" + arg("cell")]
-    for e in extra:
-        args += ["-rd", e]
-    r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args,
-                       capture_output=True, text=True)
-    if ok and r.returncode != 0:
-        print(r.stdout, r.stderr)
-        print("FAIL: %s %s exited with %d" % (cmd, " ".join(extra), r.returncode))
-        sys.exit(1)
-    return r
+    return batch(out, cmd, *extra, ok=ok)
 
 
 def rows_of(path):

@@ -18,15 +18,13 @@ import csv
 import filecmp
 import json
 import os
-import shutil
-import subprocess
 import sys
 from collections import Counter
 
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import arg, batch, expect, finish  # noqa: E402
 
 from linf_opc import contexts as ctx  # noqa: E402
 from linf_opc import gauges as gauge_stage  # noqa: E402
@@ -40,20 +38,7 @@ PLAN_FILES = ["calibration.oas", "verification.oas", "calibration_gauges.csv", "
 
 
 def run(out, *extra, cmd="split", ok=True):
-    shutil.rmtree(out, ignore_errors=True)
-    args = ["-rd", "cmd=" + cmd, "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"), "-rd", "out=" + out,
-            "-rd", "markers=" + arg("markers"), "-rd", "halves=0", "-rd", "quiet=1"]
-    if arg("cell", None):
-        args += ["-rd", "cell=" + arg("cell")]
-    for e in extra:
-        args += ["-rd", e]
-    r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args,
-                       capture_output=True, text=True)
-    if ok and r.returncode != 0:
-        print(r.stdout, r.stderr)
-        print("FAIL: %s %s exited with %d" % (cmd, " ".join(extra), r.returncode))
-        sys.exit(1)
-    return r
+    return batch(out, cmd, "markers=" + arg("markers"), "halves=0", *extra, ok=ok)
 
 
 def rows_of(d, which):

@@ -39,6 +39,25 @@ def arg(name, default=_required):
     return default
 
 
+def batch(out, cmd, *settings, ok=True):
+    """Runs the batch command `cmd` (macros/linf_opc.py under `klayout -b`, quiet) on the script's
+    -rd input, layer and, if given, cell, writing into `out` (emptied first), with `settings` as
+    further "name=value" -rd arguments; the completed process. ok: a non-zero exit prints its
+    output and ends the script (exit 1)."""
+    import shutil
+    import subprocess
+    shutil.rmtree(out, ignore_errors=True)
+    settings = ["cmd=" + cmd, "input=" + arg("input"), "layer=" + arg("layer"), "out=" + out, "quiet=1"] + \
+        (["cell=" + arg("cell")] if arg("cell", None) else []) + list(settings)
+    r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] +
+                       [a for s in settings for a in ("-rd", s)], capture_output=True, text=True)
+    if ok and r.returncode != 0:
+        print(r.stdout, r.stderr)
+        print("FAIL: %s %s exited with %d" % (cmd, " ".join(settings), r.returncode))
+        sys.exit(1)
+    return r
+
+
 def expect(cond, what):
     """Records a failed expectation (the script goes on, to report them all) and prints it."""
     if not cond:
