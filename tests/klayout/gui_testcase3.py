@@ -138,6 +138,7 @@ def gauges_step():
     try:
         import linf_opc.bar as bar
         import linf_opc.menu as menu
+        from linf_opc import gauge_output
         view, ly, cell = state["view"], state["ly"], state["cell"]
         select(view, ly)
         seconds, took = freeze.measure(lambda: mw.menu().action("tools_menu.linf_opc.gauges").trigger())
@@ -157,6 +158,16 @@ def gauges_step():
         n = sum(lines.values())
         say("gauges %d in %d contexts; drawn per type %s" % (total, groups, lines))
         expect(0 < n == drawn == min(MOST, groups) <= MOST, "the representatives drawn, at most %d: %d" % (MOST, n))
+        # Labels at their own size never overlap (checked pairwise here, not by the plugin's grid).
+        boxes = [gauge_output.label_box(t.x, t.y, t.string, t.size)
+                 for t in (s.text for s in cell.shapes(ly.find_layer(L, 215)).each())]
+        boxes.sort()
+        overlaps = sum(1 for k, a in enumerate(boxes) for b in boxes[k + 1:]
+                       if b[0] < a[2] and a[1] < b[3] and b[1] < a[3])
+        say("labels %d of %d drawn gauges, size %s DBU, overlapping pairs %d"
+            % (len(boxes), n, boxes and round(boxes[0][3] - boxes[0][1]), overlaps))
+        expect(0 < len(boxes) <= n and overlaps == 0 and all(b[3] > b[1] for b in boxes),
+               "labels sized and never overprinting one another")
         rdb = view.rdb(view.num_rdbs() - 1)
         items = list(rdb.each_item())
         expect(len(items) == n, "the marker browser holds the drawn gauges: %d items" % len(items))

@@ -84,11 +84,33 @@ def short_label(g, dbu, count):
     return "%s %.4g nm \u00d7%s" % (LETTERS[g.type], g.cd * dbu * 1000, format(count, ","))
 
 
-def add_representatives(layout, cell, gauges, contexts, layer, datatype, most=EDITOR_MAX):
+def label_box(x, y, text, height):
+    """The box a label centred at (x, y) covers at its own height: 0.6 of the height a character."""
+    w = 0.3 * height * len(text)
+    return (x - w, y - height / 2.0, x + w, y + height / 2.0)
+
+
+def _free(placed, box, cell):
+    """True if `box` overlaps no box in `placed` (a dict of grid cells of side `cell` -> boxes),
+    and then it is added."""
+    cells = [(i, j) for i in range(int(box[0] // cell), int(box[2] // cell) + 1)
+             for j in range(int(box[1] // cell), int(box[3] // cell) + 1)]
+    for c in cells:
+        for b in placed.get(c, ()):
+            if box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3]:
+                return False
+    for c in cells:
+        placed.setdefault(c, []).append(box)
+    return True
+
+
+def add_representatives(layout, cell, gauges, contexts, layer, datatype, most=EDITOR_MAX, label_height=0):
     """Draws the representatives of the `most` best-ranked (type, context) groups (contexts:
     contexts.Contexts of `gauges`): each measurement line as a zero-width path on its type's
-    layer, each label on the label layer; every layer cleared first. Returns the gauge indices
-    drawn, rank order."""
+    layer, each label on the label layer; every layer cleared first. label_height > 0 (DBU): the
+    labels have that size and a label is left out where it would overlap a better-ranked one at
+    that size (labels that overprint are read by nobody). Returns the gauge indices drawn, rank
+    order."""
     chosen = contexts.representatives[:most]
     targets = {}
     for t, dt in list(EDITOR_DATATYPES.items()) + [("labels", LABEL_DATATYPE)]:
@@ -99,11 +121,19 @@ def add_representatives(layout, cell, gauges, contexts, layer, datatype, most=ED
         cell.shapes(index).clear()
         targets[t] = cell.shapes(index)
     dbu = layout.dbu
+    placed = {}
     for i in chosen:
         g = gauges[i]
         a, b = pya.Point(round(g.x1), round(g.y1)), pya.Point(round(g.x2), round(g.y2))
         targets[g.type].insert(pya.Path([a, b], 0))
-        text = pya.Text(short_label(g, dbu, contexts.count[contexts.key(i)]), pya.Trans(round(g.cx), round(g.cy)))
+        words = short_label(g, dbu, contexts.count[contexts.key(i)])
+        x, y = round(g.cx), round(g.cy)
+        if label_height > 0 and not _free(placed, label_box(x, y, words, label_height), 8 * label_height):
+            continue
+        text = pya.Text(words, pya.Trans(x, y))
+        if label_height > 0:
+            text.size = round(label_height)
+            text.halign, text.valign = pya.HAlign.HAlignCenter, pya.VAlign.VAlignCenter
         targets["labels"].insert(text)
     return chosen
 

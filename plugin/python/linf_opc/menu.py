@@ -210,7 +210,7 @@ def gauges_of_current_layer():
         bar.start("drawing")
         drawn = _undoable(view, ly, "Gauges on %s" % info.to_s(),
                           lambda: gauge_output.add_representatives(ly, cv.cell, result.gauges, groups, info.layer,
-                                                                   info.datatype),
+                                                                   info.datatype, label_height=pitch / 2),
                           (info.layer, info.datatype))
         bar.start("marker browser")
         _show_report(view, "gauges %d-%d" % (info.layer, info.datatype), lambda path: gauge_output.write_drawn_report(
