@@ -1,5 +1,9 @@
 // The lithography model: kernels (a preset's optics or a folder of ICCAD 2013 files), the
 // threshold rule, and the printability of gauges read from the gauge table's columns in place.
+#include <complex>
+#include <cstring>
+#include <stdexcept>
+
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -28,7 +32,29 @@ void bind_litho(py::module_& m) {
       .def_property_readonly("period", [](const litho::Kernels& k) { return k.period; })
       .def_property_readonly("count", [](const litho::Kernels& k) { return k.count(); })
       .def_property_readonly("size", [](const litho::Kernels& k) { return k.size; })
-      .def_property_readonly("clear_field", &litho::Kernels::clear_field);
+      .def_property_readonly("clear_field", &litho::Kernels::clear_field)
+      // Pickled with the editor's calls into its worker process (plugin worker.py).
+      .def(py::pickle(
+          [](const litho::Kernels& k) {
+            py::list values;
+            for (const auto& v : k.values)
+              values.append(py::bytes(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(v[0])));
+            return py::make_tuple(k.size, k.period, k.weights, values);
+          },
+          [](const py::tuple& t) {
+            if (t.size() != 4) throw std::invalid_argument("not a pickled LithoKernels");
+            litho::Kernels k;
+            k.size = t[0].cast<int>();
+            k.period = t[1].cast<double>();
+            k.weights = t[2].cast<std::vector<double>>();
+            for (const auto& b : t[3].cast<py::list>()) {
+              const std::string bytes = b.cast<std::string>();
+              std::vector<std::complex<double>> v(bytes.size() / sizeof(std::complex<double>));
+              std::memcpy(v.data(), bytes.data(), v.size() * sizeof(v[0]));
+              k.values.push_back(std::move(v));
+            }
+            return k;
+          }));
 
   m.def(
       "litho_kernels",

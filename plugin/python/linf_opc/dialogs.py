@@ -5,6 +5,8 @@ import os
 import pya
 
 from . import cluster
+from .flow_summary import flow_results
+from .litho import PRESETS
 from .selection import MODE_NAMES
 
 TITLE = "L\u221e Voronoi OPC"
@@ -198,9 +200,15 @@ SPLIT_MODES = ("plan", "stratified", "threshold")
 SPLIT_LABELS = ("budgeted gauge plan", "stratified hold-out", "score threshold")
 
 
+# The model that scores the gauges (-rd litho): none keeps the geometric score.
+LITHO_LABELS = {"": "none: the geometric score", "duv193": "duv193: ArF immersion, 193 nm",
+                "euv": "euv: 13.5 nm, NA 0.33", "iccad13": "iccad13: the ICCAD 2013 contest's kernels"}
+
+
 class FlowDialog(pya.QDialog):
     """The whole flow: layer, markers, window sizes, coverage mode, split mode and its numbers
-    (plan budget and verification size, fraction, threshold, seed), output folder."""
+    (plan budget and verification size, fraction, threshold, seed), output folder, lithography
+    model, Dask scheduler."""
 
     def __init__(self, parent, layers, current_layer, settings, title, default_out="", layout_um=0.0):
         super().__init__(parent)
@@ -248,6 +256,12 @@ class FlowDialog(pya.QDialog):
         line.addWidget(self.out)
         line.addWidget(pick)
         form.addRow("Output folder", row)
+        self.litho = pya.QComboBox(self)
+        for name in ("",) + PRESETS:
+            self.litho.addItem(LITHO_LABELS.get(name, name))
+        self.litho.currentIndex = (("",) + PRESETS).index(settings.get("litho", "")) if settings.get("litho", "") in \
+            PRESETS else 0
+        form.addRow("Lithography model", self.litho)
         self.scheduler = pya.QLineEdit(settings.get("scheduler", ""), self)
         self.scheduler.placeholderText = "tcp://HOST:PORT; blank: this computer"
         form.addRow("Dask scheduler (optional)", self.scheduler)
@@ -293,7 +307,7 @@ class FlowDialog(pya.QDialog):
                 "verify": self.verify.text.strip(),
                 "fraction": self.fraction.text.strip(), "threshold": self.threshold.text.strip(),
                 "seed": self.seed.text.strip(), "out": self.out.text.strip(),
-                "scheduler": self.scheduler.text.strip()}
+                "scheduler": self.scheduler.text.strip(), "litho": (("",) + PRESETS)[max(0, self.litho.currentIndex)]}
 
 
 def ask_flow(layers, current_layer, title, default_out="", layout_um=0.0):
@@ -312,45 +326,6 @@ def ask_flow(layers, current_layer, title, default_out="", layout_um=0.0):
     finally:
         current = None
         d._destroy()
-
-
-def flow_results(folder):
-    """What the results dialog says about the flow's files in `folder`: [(label, text)]."""
-    def load(name):
-        try:
-            with open(os.path.join(folder, name)) as f:
-                return json.load(f)
-        except (OSError, ValueError):
-            return {}
-    summary, split, stats = load("summary.json"), load("split.json"), load("stats.json")
-    rows = []
-    sel = summary.get("select", {})
-    chosen = sel.get("chosen", {})
-    coverage = [r for r in stats.get("coverage", []) if r.get("mode") == chosen.get("mode")
-                and r.get("W_s") == "%sx%s" % (chosen.get("size"), chosen.get("size"))]
-    if coverage:
-        rows.append(("Markers covered", "%d of %d by %d windows (mode %s, %s pitches of %.4g \u00b5m)"
-                     % (coverage[0]["M_c"], sel.get("markers", 0), chosen.get("windows", 0), chosen.get("mode"),
-                        coverage[0]["W_s"], sel.get("pitch_um", 0))))
-    classes = stats.get("pattern_classes")
-    if classes:
-        rows.append(("Pattern classes", "%d windows form %d classes of alike clips (pattern_classes.csv)"
-                     % (classes["windows"], classes["classes"])))
-    sets = split.get("sets", {})
-    for name in ("calibration", "verification"):
-        n = split.get("counts", {}).get(name)
-        if n is None:
-            continue
-        text = "%d gauges (%s.oas, %s_gauges.csv)" % (n, name, name)
-        if name in sets and "contexts" in sets[name]:
-            text += "; %d contexts, %.1f%% of the layer's gauges" % (sets[name]["contexts"],
-                                                                     100 * sets[name].get("share_of_gauges", 0))
-        rows.append((name.capitalize(), text))
-    layer = split.get("layer", {})
-    if layer:
-        rows.append(("Layer", "%d gauges in %d contexts" % (layer.get("gauges", 0), layer.get("contexts", 0))))
-    rows.append(("Output folder", os.path.abspath(folder)))
-    return rows
 
 
 class ResultsDialog(pya.QDialog):

@@ -22,7 +22,7 @@ PICTURES = 8  # contexts drawn
 SIDE = 260   # px of one panel
 
 
-def _contours(values, m, lo, hi, level):
+def contours_of(values, m, lo, hi, level):
     """Marching squares on the grid cells [lo, hi) x [lo, hi): segments (x1, y1, x2, y2) in grid
     units where the image crosses `level`."""
     out = []
@@ -104,7 +104,7 @@ def section(table, region, polygons, dbu_um, model, threshold, rows):
         for values, level, style in ((array("d", blurred[k]), threshold / (1 - DOSE) ** 2, ' stroke-dasharray="3,2"'),
                                      (array("d", focus[k]), threshold / (1 + DOSE) ** 2, ' stroke-dasharray="3,2"'),
                                      (array("d", focus[k]), threshold, "")):
-            segs = _contours(values, m, lo, hi, level)
+            segs = contours_of(values, m, lo, hi, level)
             printed.append('<path fill="none" stroke="#1f77b4" stroke-width="1.4"%s d="%s"/>' % (style, " ".join(
                 "M%.1f %.1f L%.1f %.1f" % ((a - lo) * s, SIDE - (b - lo) * s, (c - lo) * s, SIDE - (e - lo) * s)
                 for a, b, c, e in segs)))
@@ -123,3 +123,4 @@ def rows_to_draw(table, plan=None, most=PICTURES):
     if plan is not None:
         return list(plan.contexts.representatives[:most])
     return list(range(min(most, len(table))))
+

@@ -20,6 +20,7 @@ from . import gauge_output
 from . import gauges as gauge_stage
 from . import layer_style
 from . import layout as layer_io
+from . import contour_output
 from . import markers as marker_io
 from . import selection as selection_stage
 from . import selection_output
@@ -307,11 +308,18 @@ def run_flow():
             inp.out.commit()
         finally:
             inp.out.abort()  # no-op after a commit; a failed run leaves no partial files
+        contours = []
+        if values.get("litho"):
+            bar.start("printed contours (core)")
+            contours = contour_output.printed_contours(inp, values, chosen)
         bar.start("drawing")
         rdb = pya.ReportDatabase("flow")
         rdb.load(os.path.join(inp.dir, rdb_name))
-        _undoable(view, ly, "OPC pattern flow on %s" % values["layer"],
-                  lambda: selection_output.add_layer(ly, cv.cell, chosen, l, d), (l, d))
+
+        def draw():
+            selection_output.add_layer(ly, cv.cell, chosen, l, d)
+            contour_output.add_layer(ly, cv.cell, l, d, values.get("litho"), contours)
+        _undoable(view, ly, "OPC pattern flow on %s" % values["layer"], draw, (l, d))
         index = _add_report(view, rdb)
         mw.message(line, 20000)
         run_flow.last = line

@@ -38,6 +38,10 @@ if fault == "hang":
     import time
     time.sleep(3600)
 import linf_opc_core as core
+# Core objects pickled by the editor (a model's LithoKernels) name the module as KLayout's
+# package holds it, linf_opc.linf_opc_core: the package importable, that module the one here.
+sys.path.append(sys.argv[2])
+sys.modules.setdefault("linf_opc.linf_opc_core", core)
 name, args, kwargs = pickle.load(sys.stdin.buffer)
 scheduler = kwargs.pop("scheduler", None)
 told = kwargs.pop("progress_file", None)
@@ -47,7 +51,6 @@ if told:  # the core's steps for the parent's bar: one fixed-size record, rewrit
         fd, ("%s\t%d\t%d\n" % (step, done, total)).encode()[:RECORD].ljust(RECORD), 0)
 try:
     if scheduler:  # the tiles on a Dask cluster (cluster.py): this process is its client
-        sys.path.insert(0, sys.argv[2])
         from linf_opc import cluster
         try:
             kwargs["tiles"] = cluster.Tiles(cluster.connect(scheduler))

@@ -1,0 +1,69 @@
+"""The editor's printed contours: after a flow with a lithography model, the nominal printed
+contour (dose 1, in focus, at the threshold the flow calibrated) inside each of the plan's first
+windows, drawn as edges on L/216 so that a person sees where the layer prints thin or merges.
+
+in:  the flow's input and folder (summary.json: the threshold), its values (-rd litho), the
+     chosen selection run (its windows)
+out: segments in DBU; add_layer draws them
+"""
+import json
+import os
+from array import array
+
+import pya
+
+from . import core
+from . import litho
+from .litho_report import GRID, contours_of
+from .polygons import core_input
+
+CONTOUR_DATATYPE = 216  # the editor's printed contours of the plan's windows
+CONTOUR_WINDOWS = 200   # windows simulated for the editor at most, the plan's first
+
+
+def contour_edges(polygons, dbu_um, model, threshold, boxes):
+    """The nominal printed contour (dose 1, in focus, at `threshold`) inside each window box
+    (x1, y1, x2, y2 in DBU), simulated at the box's centre: segments (x1, y1, x2, y2) in DBU, those
+    of a window kept where their midpoint lies in its box and in the simulation's valid centre."""
+    if not boxes:
+        return []
+    dbu_nm = dbu_um * 1000.0
+    P = model.kernels.period
+    m = GRID
+    lo, hi = m // 4, 3 * m // 4 + 1
+    xs = [(b[0] + b[2]) / 2.0 for b in boxes]
+    ys = [(b[1] + b[3]) / 2.0 for b in boxes]
+    images = core.litho_window_images(core_input(polygons), dbu_nm, xs, ys, model.kernels, m)
+    step = P / m / dbu_nm  # DBU a grid unit
+    out = []
+    for k, b in enumerate(boxes):
+        x0, y0 = xs[k] - P / 2 / dbu_nm, ys[k] - P / 2 / dbu_nm  # grid (0, 0)
+        for a, c, d, e in contours_of(array("d", images[k]), m, lo, hi, threshold):
+            seg = (x0 + a * step, y0 + c * step, x0 + d * step, y0 + e * step)
+            mx, my = (seg[0] + seg[2]) / 2, (seg[1] + seg[3]) / 2
+            if b[0] <= mx <= b[2] and b[1] <= my <= b[3]:
+                out.append(seg)
+    return out
+
+
+def printed_contours(inp, values, chosen):
+    """The nominal printed contours of the plan's first windows on the model the flow used, at
+    the threshold it calibrated (summary.json): segments in DBU."""
+    with open(os.path.join(inp.dir, "summary.json")) as f:
+        threshold = json.load(f)["gauges"]["litho"]["threshold"]
+    boxes = [w[:4] for w in chosen.windows[:CONTOUR_WINDOWS]]
+    return contour_edges(inp.polygons, inp.dbu, litho.model_of(values), threshold, boxes)
+
+
+def add_layer(ly, cell, layer, datatype, model, segments):
+    """The printed contours as edges on L/216, cleared first (also when this run has none)."""
+    index = ly.find_layer(layer, CONTOUR_DATATYPE)
+    if index is None and not segments:
+        return
+    if index is None:
+        index = ly.insert_layer(pya.LayerInfo(layer, CONTOUR_DATATYPE, "printed contours (%s) %d/%d"
+                                              % (model, layer, datatype)))
+    shapes = cell.shapes(index)
+    shapes.clear()
+    for x1, y1, x2, y2 in segments:
+        shapes.insert(pya.Edge(round(x1), round(y1), round(x2), round(y2)))
