@@ -14,6 +14,7 @@ import pya
 
 from . import core
 from . import litho
+from . import progress
 from .litho_report import GRID, contours_of
 from .polygons import core_input
 
@@ -37,6 +38,7 @@ def contour_edges(polygons, dbu_um, model, threshold, boxes):
     step = P / m / dbu_nm  # DBU a grid unit
     out = []
     for k, b in enumerate(boxes):
+        progress.breathe(k, len(boxes))  # marching squares in Python: the editor's loop turns
         x0, y0 = xs[k] - P / 2 / dbu_nm, ys[k] - P / 2 / dbu_nm  # grid (0, 0)
         for a, c, d, e in contours_of(array("d", images[k]), m, lo, hi, threshold):
             seg = (x0 + a * step, y0 + c * step, x0 + d * step, y0 + e * step)
