@@ -35,6 +35,7 @@ class Gui:
         self.capture_titles = []
         self.capture_all = capture_all
         self.timers = []
+        self.waits = {}  # tries so far of each wait_for_dialog caller
         self.watchdog = pya.QTimer()
         self.watchdog.interval = watch_ms
         self.watchdog.timeout = self.close_modal
@@ -60,6 +61,18 @@ class Gui:
         t.timeout = f
         t.start()
         self.timers.append(t)
+
+    def wait_for_dialog(self, class_name, again, every, most):
+        """The plugin's dialog on screen (dialogs.current) if it is a `class_name`; else None, and
+        `again` runs once more after `every` ms, at most `most` times (the action is still busy)."""
+        import linf_opc.dialogs as dialogs
+        d = dialogs.current
+        if d is not None and type(d).__name__ == class_name:
+            return d
+        self.waits[again] = self.waits.get(again, 0) + 1
+        if self.waits[again] < most:
+            self.later(every, again)
+        return None
 
     def load(self, path, then, ms=1500):
         """Loads the layout once the event loop is up; `then` runs when the layer list has filled

@@ -319,12 +319,8 @@ def fill_flow_dialog():
 
 def check_results():
     """The results dialog after the flow: counts, the folder, the buttons; then closed."""
-    import linf_opc.dialogs as dialogs
-    d = dialogs.current
-    if d is None or not isinstance(d, dialogs.ResultsDialog):
-        state["results_wait"] = state.get("results_wait", 0) + 1
-        if state["results_wait"] < 300:
-            later(500, check_results)
+    d = gui.wait_for_dialog("ResultsDialog", check_results, 500, 300)
+    if d is None:
         return
     text = d.text()
     say("results dialog:\n" + text)

@@ -243,12 +243,8 @@ def fill_flow_dialog():
 
 
 def check_results():
-    import linf_opc.dialogs as dialogs
-    d = dialogs.current
-    if d is None or not isinstance(d, dialogs.ResultsDialog):
-        state["wait"] = state.get("wait", 0) + 1
-        if state["wait"] < 1200:
-            later(250, check_results)
+    d = gui.wait_for_dialog("ResultsDialog", check_results, 250, 1200)
+    if d is None:
         return
     text = d.text()
     say("results dialog:\n" + text)
