@@ -96,6 +96,24 @@ class Gui:
         w.close()
 
 
+def group_children(view, layer, datatype):
+    """How many group nodes "L∞ OPC (L/D)" the layer list has, and their children as
+    [(datatype, fill colour, dither pattern, visible)]."""
+    groups, children = 0, []
+    it = view.begin_layers()
+    while not it.at_end():
+        if it.current().name == "L\u221e OPC (%d/%d)" % (layer, datatype):
+            groups += 1
+            child = it.dup()
+            child.down_first_child()
+            while not child.at_end():
+                c = child.current()
+                children.append((c.source_datatype, c.fill_color, c.dither_pattern, c.visible))
+                child.next_sibling(1)
+        it.next_sibling(1)
+    return groups, children
+
+
 def select_layer(view, ly, layer, datatype):
     """Selects layer/datatype in the layer list, as the user does by clicking it."""
     target = ly.find_layer(layer, datatype)

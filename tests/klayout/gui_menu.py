@@ -9,7 +9,7 @@ import sys
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gui_harness import Gui, select_layer  # noqa: E402
+from gui_harness import Gui, group_children, select_layer  # noqa: E402
 
 g = globals()
 gui = Gui(g)
@@ -64,28 +64,10 @@ def run_test():
     finish()
 
 
-def group_children(view):
-    """The group nodes "L∞ OPC (L/D)" and their children (datatype, fill, dither, visible)."""
-    groups, children = 0, []
-    it = view.begin_layers()
-    while not it.at_end():
-        node = it.current()
-        if node.name == "L\u221e OPC (%d/%d)" % (L, D):
-            groups += 1
-            child = it.dup()
-            child.down_first_child()
-            while not child.at_end():
-                c = child.current()
-                children.append((c.source_datatype, c.fill_color, c.dither_pattern, c.visible))
-                child.next_sibling(1)
-        it.next_sibling(1)
-    return groups, children
-
-
 def check_group(view, when):
     """The plugin's layers: one group node "L∞ OPC (L/D)", each kind its own colour with a
     hollow fill, adjacent hidden."""
-    groups, children = group_children(view)
+    groups, children = group_children(view, L, D)
     say("%s: group %d, children %s" % (when, groups, children))
     colours = [c[1] for c in children]
     expect(groups == 1 and len(children) >= 4 and len(set(colours)) == len(colours)
@@ -381,7 +363,7 @@ def flow_step():
         inside = sum(1 for s in edges if s.is_edge() and windows.bbox().contains(s.edge.p1))
         say("printed contours: %d edges, %d inside the windows' box" % (len(edges), inside))
         expect(len(edges) > 0 and inside == len(edges), "the flow drew the printed contours of its windows on L/216")
-        groups, children = group_children(view)
+        groups, children = group_children(view, L, D)
         expect(groups == 1 and 216 in [c[0] for c in children], "the contours in the layer group: %s" % children)
         expect(view.num_rdbs() == rdbs + 1, "the flow's report database is in the marker browser")
         expect(state.get("flow_shot") is True, "flow dialog screenshot saved")

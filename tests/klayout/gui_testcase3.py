@@ -17,7 +17,7 @@ import time
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gui_harness import Gui, select_layer  # noqa: E402
+from gui_harness import Gui, group_children, select_layer  # noqa: E402
 
 g = globals()
 gui = Gui(g)
@@ -68,23 +68,6 @@ def select(view, ly, datatype=D):
     return select_layer(view, ly, L, datatype)
 
 
-def children_of_group(view):
-    """[(datatype, colour, dither, visible)] of the group node "L∞ OPC (L/D)", and how many such nodes."""
-    groups, children = 0, []
-    it = view.begin_layers()
-    while not it.at_end():
-        if it.current().name == "L\u221e OPC (%d/%d)" % (L, D):
-            groups += 1
-            child = it.dup()
-            child.down_first_child()
-            while not child.at_end():
-                c = child.current()
-                children.append((c.source_datatype, c.fill_color, c.dither_pattern, c.visible))
-                child.next_sibling(1)
-        it.next_sibling(1)
-    return groups, children
-
-
 def load():
     gui.load(g["input"], voronoi_step)
 
@@ -119,7 +102,7 @@ def voronoi_step():
         lb = layer_box.to_dtype(ly.dbu)
         expect(vb.contains(lb.p1) and vb.contains(lb.p2) and vb.width() < 1.6 * max(lb.width(), lb.height()),
                "zoom fit shows the layout (%s for the layer's %s), not rays" % (vb, lb))
-        groups, children = children_of_group(view)
+        groups, children = group_children(view, L, D)
         expect(groups == 1 and [c[3] for c in children if c[0] == 203] == [False],
                "one group node; adjacent hidden")
         if ly.is_editable():
