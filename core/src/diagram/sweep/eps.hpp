@@ -1,0 +1,82 @@
+// Numbers of the sweep's predicates: polynomials in an infinitesimal eps > 0.
+//
+// The ownership rule (least L-inf distance, then least L1) is the limit, as eps -> 0+, of the
+// norm N_eps = L-inf + eps L1, whose unit ball is an octagon with no side parallel to a line
+// through two integer points. The sweep decides everything in N_eps for an infinitesimal eps:
+// every quantity it compares is a polynomial in eps with integer coefficients (or a ratio of
+// two), and its sign at 0+ is that of its lowest nonzero coefficient. Exact, and no case
+// analysis of the ties: they are what the higher coefficients decide.
+#pragma once
+#include <array>
+#include <cstdint>
+
+namespace linf::sweep {
+
+// Coefficients of eps^0 .. eps^(kTerms-1). Products of the predicates stay below degree 8 and,
+// for coordinates within +-2^30 and sides' coefficients 0, +-1, within 2^45.
+constexpr int kTerms = 8;
+
+struct Eps {
+  std::array<std::int64_t, kTerms> c{};
+  Eps() = default;
+  Eps(std::int64_t v) { c[0] = v; }  // NOLINT: an integer is a constant polynomial
+  static Eps of(std::int64_t c0, std::int64_t c1) {
+    Eps e;
+    e.c[0] = c0, e.c[1] = c1;
+    return e;
+  }
+  int sign() const {
+    for (std::int64_t v : c)
+      if (v != 0) return v > 0 ? 1 : -1;
+    return 0;
+  }
+  friend Eps operator+(const Eps& a, const Eps& b) {
+    Eps r;
+    for (int i = 0; i < kTerms; ++i) r.c[i] = a.c[i] + b.c[i];
+    return r;
+  }
+  friend Eps operator-(const Eps& a, const Eps& b) {
+    Eps r;
+    for (int i = 0; i < kTerms; ++i) r.c[i] = a.c[i] - b.c[i];
+    return r;
+  }
+  friend Eps operator-(const Eps& a) {
+    Eps r;
+    for (int i = 0; i < kTerms; ++i) r.c[i] = -a.c[i];
+    return r;
+  }
+  friend Eps operator*(const Eps& a, const Eps& b) {
+    Eps r;
+    int da = kTerms - 1, db = kTerms - 1;
+    while (da > 0 && a.c[da] == 0) --da;
+    while (db > 0 && b.c[db] == 0) --db;
+    for (int i = 0; i <= da; ++i) {
+      if (a.c[i] == 0) continue;
+      for (int j = 0; j <= db && i + j < kTerms; ++j) r.c[i + j] += a.c[i] * b.c[j];
+    }
+    return r;
+  }
+  // The value at eps = 0 (what a coordinate converges to).
+  double limit() const { return double(c[0]); }
+};
+
+// A ratio num / den with den > 0 at 0+.
+struct Ratio {
+  Eps num, den = Eps(1);
+  Ratio() = default;
+  Ratio(std::int64_t v) : num(v) {}  // NOLINT
+  Ratio(const Eps& n, const Eps& d) : num(n), den(d) {
+    if (den.sign() < 0) num = -num, den = -den;
+  }
+  // The limit at eps -> 0+: the ratio of the lowest coefficients of the same order, where the
+  // denominator's lowest order is at most the numerator's (what the predicates produce).
+  double limit() const {
+    int k = 0;
+    while (k < kTerms - 1 && den.c[k] == 0) ++k;
+    return double(num.c[k]) / double(den.c[k]);
+  }
+};
+
+inline int compare(const Ratio& a, const Ratio& b) { return (a.num * b.den - b.num * a.den).sign(); }
+
+}  // namespace linf::sweep

@@ -1,0 +1,96 @@
+// The sweep-line builder against the subdivision builder (the oracle) and the checker.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "linf/diagram/builder.hpp"
+#include "linf/diagram/checker.hpp"
+#include "linf/diagram/diagram.hpp"
+#include "linf/diagram/sweep.hpp"
+#include "linf/geometry/sites.hpp"
+
+using namespace linf;
+
+namespace {
+
+// The first piece of one builder that the other lacks (same owners, ends within tol either
+// way round), or "".
+std::string difference(const Sites& s) {
+  const Box clip = clip_box(s);
+  const std::vector<Piece> sub = build_pieces(s, clip), swp = sweep_pieces(s, clip);
+  const double tol = 1e-6 * (1 + clip.x2 - clip.x1);
+  auto near = [&](const Vec2& u, const Vec2& v) { return std::fabs(u.x - v.x) <= tol && std::fabs(u.y - v.y) <= tol; };
+  auto same = [&](const Piece& x, const Piece& y) {
+    return x.a == y.a && x.b == y.b && ((near(x.p, y.p) && near(x.q, y.q)) || (near(x.p, y.q) && near(x.q, y.p)));
+  };
+  auto missing = [&](const std::vector<Piece>& from, const std::vector<Piece>& in, const char* who) -> std::string {
+    for (const Piece& x : from)
+      if (std::none_of(in.begin(), in.end(), [&](const Piece& y) { return same(x, y); })) {
+        char m[300];
+        std::snprintf(m, sizeof m, "only the %s has %d-%d (%.9g,%.9g)-(%.9g,%.9g)", who, x.a, x.b, x.p.x, x.p.y, x.q.x,
+                      x.q.y);
+        return m;
+      }
+    return "";
+  };
+  std::string d = missing(sub, swp, "subdivision");
+  return d.empty() ? missing(swp, sub, "sweep") : d;
+}
+
+Sites points(const std::vector<Point>& p) { return sites_of_plain(p, {}); }
+
+std::vector<Point> random_points(std::uint64_t seed, int n, int range) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> c(-range, range);
+  std::set<std::pair<int, int>> seen;
+  std::vector<Point> p;
+  while (int(p.size()) < n) {
+    const int x = c(rng), y = c(rng);
+    if (seen.insert({x, y}).second) p.push_back({x, y});
+  }
+  return p;
+}
+
+}  // namespace
+
+TEST(Sweep, TwoAndThreePoints) {
+  const std::vector<std::vector<Point>> cases = {
+      {{0, 0}, {10, 0}},  {{0, 0}, {0, 10}},  {{0, 0}, {10, 4}},   {{0, 0}, {4, 10}},  {{0, 0}, {10, 10}},
+      {{0, 0}, {10, -10}}, {{0, 0}, {10, 0}, {5, 8}}, {{0, 0}, {10, 0}, {20, 0}}, {{0, 0}, {10, 3}, {3, 9}},
+      {{0, 0}, {10, 10}, {20, 0}}, {{0, 0}, {0, 10}, {0, 20}, {10, 5}}};
+  for (const auto& c : cases) {
+    const Sites s = points(c);
+    EXPECT_EQ(difference(s), "") << "points " << c.size() << " first " << c[1].x << "," << c[1].y;
+  }
+}
+
+TEST(Sweep, RandomPointSetsAsTheSubdivision) {
+  // Small ranges put many points on one line, one diagonal, one square: the ties.
+  for (std::uint64_t seed = 1; seed <= 300; ++seed) {
+    const int range = seed % 3 == 0 ? 4 : (seed % 3 == 1 ? 12 : 1000);
+    const Sites s = points(random_points(seed, 3 + int(seed % 20), range));
+    ASSERT_EQ(difference(s), "") << "seed " << seed;
+  }
+}
+TEST(Sweep, Stress) {
+  const char* env = std::getenv("SWEEP_STRESS");
+  const int n = env ? std::atoi(env) : 0;
+  int bad = 0;
+  for (std::uint64_t seed = 1000; seed < 1000 + std::uint64_t(n); ++seed) {
+    const int range = seed % 4 == 0 ? 5 : (seed % 4 == 1 ? 20 : (seed % 4 == 2 ? 200 : 1 << 29));
+    const int cnt = 3 + int(seed % 97);
+    const int maxn = (2 * range + 1) * (2 * range + 1) - 1;
+    const Sites s = points(random_points(seed, std::min(cnt, maxn), range));
+    const std::string d = difference(s);
+    if (!d.empty() && ++bad < 10) std::printf("seed %llu range %d n %d: %s\n", (unsigned long long)seed, range, cnt, d.c_str());
+  }
+  EXPECT_EQ(bad, 0);
+}
