@@ -9,6 +9,7 @@
 #include <cmath>
 #include <deque>
 #include <stdexcept>
+#include <tuple>
 
 #include "linf/diagram/builder.hpp"
 #include "diagram/sweep/bisector.hpp"
@@ -94,6 +95,10 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
   const double reach = 2 * (clip.x2 - clip.x1 + clip.y2 - clip.y1) + std::fabs(clip.x1) + std::fabs(clip.x2) +
                        std::fabs(clip.y1) + std::fabs(clip.y2) + 1;
   std::vector<Piece> out;
+  struct Span {
+    std::size_t first, last;
+  };
+  std::vector<Span> spans;  // each edge's pieces in `out`
   for (std::size_t e = 0; e + 1 < topo.halves.size(); e += 2) {
     const Topology::Half &h = topo.halves[e], &g = topo.halves[e + 1];
     const Point &s = S[h.site].a, &t = S[g.site].a;
@@ -113,9 +118,11 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
     if (from > to) std::swap(from, to);
     double cuts[4] = {from, 0, 0, to};
     int n = 1;
-    for (double c : {b.mid_p - b.half, b.mid_p + b.half})
-      if (c > from && c < to && (n == 1 || c > cuts[n - 1])) cuts[n++] = c;
+    if (b.half > 0 && b.slope != 0)  // bends; else the bisector is one straight line
+      for (double c : {b.mid_p - b.half, b.mid_p + b.half})
+        if (c > from && c < to) cuts[n++] = c;
     cuts[n++] = to;
+    const std::size_t first = out.size();
     for (int i = 0; i + 1 < n; ++i) {
       Vec2 p = b.point(cuts[i]), q = b.point(cuts[i + 1]);
       if (!clip_segment(p, q, clip)) continue;
@@ -126,14 +133,23 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
       pc.d1 = linf_distance(p, s), pc.d2 = linf_distance(q, s);
       out.push_back(pc);
     }
+    if (out.size() > first) spans.push_back({first, out.size()});
   }
-  std::sort(out.begin(), out.end(), join_order);
+  // In join_order, as build_pieces leaves them: the edges sorted by owner pair (a pair has one
+  // edge, so nothing is joined unless two edges share a pair), each edge's few pieces sorted.
+  std::sort(spans.begin(), spans.end(), [&](const Span& x, const Span& y) {
+    return std::tie(out[x.first].a, out[x.first].b) < std::tie(out[y.first].a, out[y.first].b);
+  });
   std::vector<Piece> joined, run;
-  for (std::size_t i = 0; i < out.size();) {
-    std::size_t j = i;
-    while (j < out.size() && out[j].a == out[i].a && out[j].b == out[i].b) ++j;
-    run.assign(out.begin() + i, out.begin() + j);
-    join_pair(run);
+  joined.reserve(out.size());
+  for (std::size_t i = 0; i < spans.size();) {
+    std::size_t j = i + 1;
+    const Piece& head = out[spans[i].first];
+    while (j < spans.size() && out[spans[j].first].a == head.a && out[spans[j].first].b == head.b) ++j;
+    run.clear();
+    for (std::size_t k = i; k < j; ++k) run.insert(run.end(), out.begin() + spans[k].first, out.begin() + spans[k].last);
+    std::sort(run.begin(), run.end(), join_order);
+    if (j > i + 1) join_pair(run);
     joined.insert(joined.end(), run.begin(), run.end());
     i = j;
   }

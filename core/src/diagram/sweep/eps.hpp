@@ -7,14 +7,17 @@
 // two), and its sign at 0+ is that of its lowest nonzero coefficient. Exact, and no case
 // analysis of the ties: they are what the higher coefficients decide.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
 namespace linf::sweep {
 
-// Coefficients of eps^0 .. eps^(kTerms-1). Products of the predicates stay below degree 8 and,
-// for coordinates within +-2^30 and sides' coefficients 0, +-1, within 2^45.
-constexpr int kTerms = 8;
+// Coefficients of eps^0 .. eps^3: what the predicates keep is at most cubic in eps (sweep's
+// balls: linear sides, 3x3 determinants with one constant column), and for coordinates within
+// +-2^30 its coefficients stay within 2^37. Products beyond degree 3 are only formed inside
+// compare(), which keeps all seven orders.
+constexpr int kTerms = 4;
 
 struct Eps {
   std::array<std::int64_t, kTerms> c{};
@@ -77,6 +80,17 @@ struct Ratio {
   }
 };
 
-inline int compare(const Ratio& a, const Ratio& b) { return (a.num * b.den - b.num * a.den).sign(); }
+// The sign of a - b at 0+. The constant terms decide almost always (one product each way).
+inline int compare(const Ratio& a, const Ratio& b) {
+  const __int128 l0 = __int128(a.num.c[0]) * b.den.c[0], r0 = __int128(b.num.c[0]) * a.den.c[0];
+  if (l0 != r0) return l0 < r0 ? -1 : 1;
+  for (int k = 1; k < 2 * kTerms - 1; ++k) {
+    __int128 v = 0;
+    for (int i = std::max(0, k - kTerms + 1); i <= std::min(k, kTerms - 1); ++i)
+      v += __int128(a.num.c[i]) * b.den.c[k - i] - __int128(b.num.c[i]) * a.den.c[k - i];
+    if (v != 0) return v < 0 ? -1 : 1;
+  }
+  return 0;
+}
 
 }  // namespace linf::sweep

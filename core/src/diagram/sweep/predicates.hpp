@@ -14,6 +14,8 @@
 // Point sites only, so far: the builder (sweep.cpp) falls back to the subdivision for segments.
 #pragma once
 #include <boost/polygon/detail/voronoi_structures.hpp>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 
@@ -70,6 +72,21 @@ inline bool arc_distance(std::int64_t sx, std::int64_t sy, std::int64_t px, std:
   return true;
 }
 
+// Whether the arc of point site b lies nearer p (on p's horizontal) than that of a: the
+// sign of t_a - t_b. At eps = 0, t = max(dx / 2, |dy|); only its ties need the eps terms.
+inline int arc_nearer(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by, std::int64_t px,
+                      std::int64_t py) {
+  const bool reach_a = px != ax || py == ay, reach_b = px != bx || py == by;
+  if (!reach_a || !reach_b) return reach_a == reach_b ? 0 : (reach_b ? 1 : -1);
+  const std::int64_t ta = std::max<std::int64_t>(px - ax, 2 * std::llabs(py - ay));
+  const std::int64_t tb = std::max<std::int64_t>(px - bx, 2 * std::llabs(py - by));
+  if (ta != tb) return ta > tb ? 1 : -1;
+  Ratio ra, rb;
+  arc_distance(ax, ay, px, py, ra);
+  arc_distance(bx, by, px, py, rb);
+  return compare(ra, rb);
+}
+
 // The ball of N_eps through three points, if there is one: centre, radius and the sweep
 // position at which the sweep line touches it. Each point lies on one side of the ball; for
 // each choice of sides the centre solves a 3x3 linear system, and it is the ball only if the
@@ -78,43 +95,97 @@ struct Ball {
   Eps cx, cy, r, den;  // centre (cx, cy) / den, radius r / den; den > 0
 };
 
-inline Eps det3(const Eps m[3][3]) {
-  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+// The ball for sides side[0..2] of the three points, if those sides are the outermost at its
+// centre. Rows (alpha, beta, -1) . (cx, cy, r) = alpha x + beta y, by Cramer's rule through the
+// 2x2 minors of the sides (the third column is constant).
+inline bool ball_on_sides(const std::int64_t x[3], const std::int64_t y[3], const int side[3], Ball& out) {
+  const Side* S = sides();
+  const Side &f1 = S[side[0]], &f2 = S[side[1]], &f3 = S[side[2]];
+  const Eps m12 = f1.alpha * f2.beta - f2.alpha * f1.beta, m13 = f1.alpha * f3.beta - f3.alpha * f1.beta,
+            m23 = f2.alpha * f3.beta - f3.alpha * f2.beta;
+  Eps d = -(m23 - m13 + m12);
+  if (d.sign() == 0) return false;
+  const Eps h1 = f1.alpha * Eps(x[0]) + f1.beta * Eps(y[0]), h2 = f2.alpha * Eps(x[1]) + f2.beta * Eps(y[1]),
+            h3 = f3.alpha * Eps(x[2]) + f3.beta * Eps(y[2]);
+  Eps cx = -(h2 * f3.beta - h3 * f2.beta - h1 * f3.beta + h3 * f1.beta + h1 * f2.beta - h2 * f1.beta);
+  Eps cy = -(f2.alpha * h3 - f3.alpha * h2 - f1.alpha * h3 + f3.alpha * h1 + f1.alpha * h2 - f2.alpha * h1);
+  Eps r = h1 * m23 - h2 * m13 + h3 * m12;
+  if (d.sign() < 0) d = -d, cx = -cx, cy = -cy, r = -r;
+  if (r.sign() <= 0) return false;
+  for (int a = 0; a < 3; ++a) {
+    const Eps u = cx - Eps(x[a]) * d, v = cy - Eps(y[a]) * d;
+    for (int k = 0; k < 8; ++k) {
+      if (k == side[a]) continue;
+      // At eps = 0 a side's form is +-u or +-v: strictly below r there, it is below r.
+      const std::int64_t v0 = k < 4 ? (k < 2 ? u.c[0] : -u.c[0]) : (k < 6 ? v.c[0] : -v.c[0]);
+      if (v0 < r.c[0]) continue;
+      if ((S[k].alpha * u + S[k].beta * v - r).sign() > 0) return false;
+    }
+  }
+  out.cx = cx, out.cy = cy, out.r = r, out.den = d;
+  return true;
 }
 
+// An L-inf square (eps = 0) through the three points, centre and half side in doubles (halves
+// of integers: exact). Every square through three points has two of them on opposite sides
+// (else two share a side, and the system is singular), which fixes its side and centre along
+// that axis; the third, on a perpendicular side, fixes the rest.
+inline bool square_through(const std::int64_t x[3], const std::int64_t y[3], double& cx, double& cy, double& r) {
+  for (int third = 0; third < 3; ++third) {
+    const int i = (third + 1) % 3, j = (third + 2) % 3;
+    for (int axis = 0; axis < 2; ++axis) {
+      const std::int64_t* a = axis == 0 ? x : y;  // the pair's axis
+      const std::int64_t* b = axis == 0 ? y : x;
+      const std::int64_t lo = std::min(a[i], a[j]), hi = std::max(a[i], a[j]);
+      if (hi == lo) continue;
+      const double h = 0.5 * double(hi - lo), ca = 0.5 * double(hi + lo);
+      if (std::fabs(double(a[third]) - ca) > h) continue;
+      for (int dir = -1; dir <= 1; dir += 2) {
+        const double cb = double(b[third]) - dir * h;  // the third on the side facing dir
+        if (std::fabs(double(b[i]) - cb) > h || std::fabs(double(b[j]) - cb) > h) continue;
+        cx = axis == 0 ? ca : cb, cy = axis == 0 ? cb : ca, r = h;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// The ball of N_eps through three points, with a radius that stays finite as eps -> 0 (one
+// that does not meets the sweep line beyond every finite event: the limit diagram has two
+// parallel rays there, no vertex). Such a ball tends to an L-inf square through the points;
+// its centre says which sides can hold each point (one, a few where it is tied). Where the
+// squares through the points form a continuum the sides differ along it, and every choice of
+// sides is tried.
 inline bool ball_through(const std::int64_t x[3], const std::int64_t y[3], Ball& out) {
-  const Side* S = sides();
+  double cx, cy, r;
+  if (!square_through(x, y, cx, cy, r)) return false;
+  int cand[3][4], n[3];
+  for (int a = 0; a < 3; ++a) {
+    n[a] = 0;
+    const double u = cx - double(x[a]), v = cy - double(y[a]), tol = 1e-9 * (1 + r);
+    for (int k = 0; k < 8 && n[a] < 4; ++k) {
+      // Side k at eps = 0, and the sign of its eps part: k = 0..3 x dominant, 4..7 y.
+      const bool xs = k < 4;
+      const double major = xs ? (k < 2 ? u : -u) : (k < 6 ? v : -v);
+      const double minor = xs ? v : u;
+      const int msign = (k % 2 == 0) ? 1 : -1;
+      if (std::fabs(major - std::max(std::fabs(u), std::fabs(v))) > tol) continue;
+      if (minor * msign < -tol) continue;
+      cand[a][n[a]++] = k;
+    }
+  }
+  for (int i = 0; i < n[0]; ++i)
+    for (int j = 0; j < n[1]; ++j)
+      for (int k = 0; k < n[2]; ++k) {
+        const int side[3] = {cand[0][i], cand[1][j], cand[2][k]};
+        if (ball_on_sides(x, y, side, out)) return true;
+      }
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < 8; ++j)
       for (int k = 0; k < 8; ++k) {
-        const Side* f[3] = {&S[i], &S[j], &S[k]};
-        Eps m[3][3], h[3];
-        for (int a = 0; a < 3; ++a) {
-          m[a][0] = f[a]->alpha, m[a][1] = f[a]->beta, m[a][2] = Eps(-1);
-          h[a] = f[a]->alpha * Eps(x[a]) + f[a]->beta * Eps(y[a]);
-        }
-        Eps d = det3(m);
-        if (d.sign() == 0) continue;
-        Eps col[3];
-        Eps sol[3];
-        for (int c = 0; c < 3; ++c) {
-          Eps mc[3][3];
-          for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < 3; ++b) mc[a][b] = b == c ? h[a] : m[a][b];
-          sol[c] = det3(mc);
-        }
-        (void)col;
-        if (d.sign() < 0) d = -d, sol[0] = -sol[0], sol[1] = -sol[1], sol[2] = -sol[2];
-        bool ok = sol[2].sign() > 0;
-        for (int a = 0; a < 3 && ok; ++a) {
-          const Eps u = sol[0] - Eps(x[a]) * d, v = sol[1] - Eps(y[a]) * d;
-          for (int s = 0; s < 8 && ok; ++s)
-            if ((S[s].alpha * u + S[s].beta * v - sol[2]).sign() > 0) ok = false;
-        }
-        if (!ok) continue;
-        out.cx = sol[0], out.cy = sol[1], out.r = sol[2], out.den = d;
-        return true;
+        const int side[3] = {i, j, k};
+        if (ball_on_sides(x, y, side, out)) return true;
       }
   return false;
 }
@@ -172,12 +243,7 @@ struct Predicates {
       } else {
         return std::int64_t(a.y()) + b.y() < 2 * std::int64_t(p.y());
       }
-      Ratio ta, tb;
-      const bool ra = arc_distance(a.x(), a.y(), p.x(), p.y(), ta);
-      const bool rb = arc_distance(b.x(), b.y(), p.x(), p.y(), tb);
-      if (!rb) return false;
-      if (!ra) return true;
-      return compare(tb, ta) < 0;
+      return arc_nearer(a.x(), a.y(), b.x(), b.y(), p.x(), p.y()) > 0;
     }
   };
 
