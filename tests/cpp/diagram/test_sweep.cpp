@@ -16,6 +16,7 @@
 #include "linf/diagram/diagram.hpp"
 #include "linf/diagram/sweep.hpp"
 #include "linf/geometry/sites.hpp"
+#include "layouts.hpp"
 
 using namespace linf;
 
@@ -80,6 +81,39 @@ TEST(Sweep, RandomPointSetsAsTheSubdivision) {
     ASSERT_EQ(difference(s), "") << "seed " << seed;
   }
 }
+TEST(Sweep, LayoutCornersAsTheSubdivision) {
+  // The vertices of merged layouts as plain points: rows and columns of points on one line,
+  // squares of them, diagonals (the configurations where L-inf balls through three points
+  // form a continuum and the eps terms choose).
+  const linf::testing::Style styles[] = {linf::testing::Style::Rectilinear, linf::testing::Style::Octilinear,
+                                         linf::testing::Style::AnyAngle};
+  for (std::uint64_t seed = 1; seed <= 60; ++seed) {
+    std::vector<Point> p;
+    std::set<std::pair<Coord, Coord>> seen;
+    for (const Polygon& g : merge_polygons(linf::testing::random_layout(seed, styles[seed % 3], 10))) {
+      for (const Point& v : g.outer)
+        if (seen.insert({v.x, v.y}).second) p.push_back(v);
+      for (const Ring& h : g.holes)
+        for (const Point& v : h)
+          if (seen.insert({v.x, v.y}).second) p.push_back(v);
+    }
+    ASSERT_EQ(difference(points(p)), "") << "seed " << seed;
+  }
+}
+
+TEST(Sweep, TheCheckerPassesItsDiagrams) {
+  // The independent checker (no code shared with either builder) on the sweep's pieces.
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    Diagram d;
+    d.sites = points(random_points(seed, 200, seed % 2 ? 30 : 100000));
+    d.clip = clip_box(d.sites);
+    d.pieces = sweep_pieces(d.sites, d.clip);
+    const CheckReport r = check_diagram(d);
+    ASSERT_TRUE(r.ok()) << "seed " << seed << ": " << (r.messages.empty() ? "" : r.messages[0]);
+    ASSERT_GT(r.pairs_separated, 0u);
+  }
+}
+
 TEST(Sweep, Stress) {
   const char* env = std::getenv("SWEEP_STRESS");
   // On request (SWEEP_STRESS=N sets): up to 100 points, ranges 5 to 2^29.

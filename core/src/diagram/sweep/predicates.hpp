@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <stdexcept>
 
 #include "diagram/sweep/eps.hpp"
@@ -126,11 +127,13 @@ inline bool ball_on_sides(const std::int64_t x[3], const std::int64_t y[3], cons
   return true;
 }
 
-// An L-inf square (eps = 0) through the three points, centre and half side in doubles (halves
-// of integers: exact). Every square through three points has two of them on opposite sides
-// (else two share a side, and the system is singular), which fixes its side and centre along
-// that axis; the third, on a perpendicular side, fixes the rest.
-inline bool square_through(const std::int64_t x[3], const std::int64_t y[3], double& cx, double& cy, double& r) {
+// The L-inf squares (eps = 0) through the three points that hold two of them on opposite
+// sides: every square through three points does, unless two share a side (a continuum of
+// squares, whose ends are again such squares). Opposite sides fix the square's side and its
+// centre along that axis; the third point, on a perpendicular side, fixes the rest. Centres
+// and half sides in doubles (halves of integers: exact); `f(cx, cy, r)` for each.
+template <typename F>
+void squares_through(const std::int64_t x[3], const std::int64_t y[3], F f) {
   for (int third = 0; third < 3; ++third) {
     const int i = (third + 1) % 3, j = (third + 2) % 3;
     for (int axis = 0; axis < 2; ++axis) {
@@ -143,8 +146,71 @@ inline bool square_through(const std::int64_t x[3], const std::int64_t y[3], dou
       for (int dir = -1; dir <= 1; dir += 2) {
         const double cb = double(b[third]) - dir * h;  // the third on the side facing dir
         if (std::fabs(double(b[i]) - cb) > h || std::fabs(double(b[j]) - cb) > h) continue;
-        cx = axis == 0 ? ca : cb, cy = axis == 0 ? cb : ca, r = h;
-        return true;
+        if (axis == 0) f(ca, cb, h);
+        else f(cb, ca, h);
+      }
+    }
+  }
+}
+
+// Every vertex of the set of L-inf squares through the three points: three independent
+// conditions "point a on side s" (up to two a point, at a corner) met by a square that holds
+// all three. The bits of the sides each point lies on at some vertex are or-ed into cand
+// (both eps sides of each L-inf side). In doubled coordinates, integers: exact.
+inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3], unsigned cand[3]) {
+  static const int A[4] = {1, -1, 0, 0}, B[4] = {0, 0, 1, -1};
+  bool any = false;
+  for (int c1 = 0; c1 < 12; ++c1)
+    for (int c2 = c1 + 1; c2 < 12; ++c2)
+      for (int c3 = c2 + 1; c3 < 12; ++c3) {
+        const int cs[3] = {c1, c2, c3};
+        // Rows (A, B, -1) . (cx, cy, r) = A x_a + B y_a.
+        std::int64_t m[3][3], h[3];
+        for (int t = 0; t < 3; ++t) {
+          const int a = cs[t] / 4, sd = cs[t] % 4;
+          m[t][0] = A[sd], m[t][1] = B[sd], m[t][2] = -1, h[t] = A[sd] * x[a] + B[sd] * y[a];
+        }
+        auto det = [](const std::int64_t q[3][3]) {
+          return q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
+                 q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
+        };
+        const std::int64_t d = det(m);
+        if (d == 0) continue;
+        std::int64_t sol[3];  // doubled: 2 * numerator / d is an integer, d being +-1 or +-2
+        for (int c = 0; c < 3; ++c) {
+          std::int64_t q[3][3];
+          for (int t = 0; t < 3; ++t)
+            for (int u = 0; u < 3; ++u) q[t][u] = u == c ? h[t] : m[t][u];
+          sol[c] = 2 * det(q) / d;
+        }
+        if (sol[2] <= 0) continue;
+        bool ok = true;
+        for (int a = 0; a < 3 && ok; ++a)
+          ok = std::max(std::llabs(sol[0] - 2 * x[a]), std::llabs(sol[1] - 2 * y[a])) == sol[2];
+        if (!ok) continue;
+        any = true;
+        for (int a = 0; a < 3; ++a) {
+          const std::int64_t u = sol[0] - 2 * x[a], v = sol[1] - 2 * y[a];
+          if (u == sol[2]) cand[a] |= 0x03u;
+          if (-u == sol[2]) cand[a] |= 0x0cu;
+          if (v == sol[2]) cand[a] |= 0x30u;
+          if (-v == sol[2]) cand[a] |= 0xc0u;
+        }
+      }
+  return any;
+}
+
+// The first choice of sides among the candidates (bit k of cand[a]: side k for point a) that
+// gives a ball.
+inline bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const unsigned cand[3], Ball& out) {
+  for (int i = 0; i < 8; ++i) {
+    if (!(cand[0] >> i & 1u)) continue;
+    for (int j = 0; j < 8; ++j) {
+      if (!(cand[1] >> j & 1u)) continue;
+      for (int k = 0; k < 8; ++k) {
+        if (!(cand[2] >> k & 1u)) continue;
+        const int side[3] = {i, j, k};
+        if (ball_on_sides(x, y, side, out)) return true;
       }
     }
   }
@@ -153,41 +219,31 @@ inline bool square_through(const std::int64_t x[3], const std::int64_t y[3], dou
 
 // The ball of N_eps through three points, with a radius that stays finite as eps -> 0 (one
 // that does not meets the sweep line beyond every finite event: the limit diagram has two
-// parallel rays there, no vertex). Such a ball tends to an L-inf square through the points;
-// its centre says which sides can hold each point (one, a few where it is tied). Where the
-// squares through the points form a continuum the sides differ along it, and every choice of
-// sides is tried.
+// parallel rays there, no vertex). Such a ball tends to an L-inf square through the points:
+// a vertex of the set of such squares or a point of an edge of it, where each point lies on
+// sides it lies on at the edge's ends. Those sides (either eps side of each: the minor
+// coordinate can change sign along an edge) are the candidates. The squares squares_through
+// gives are most often enough; else all the vertices; every choice of sides is the last resort.
 inline bool ball_through(const std::int64_t x[3], const std::int64_t y[3], Ball& out) {
-  double cx, cy, r;
-  if (!square_through(x, y, cx, cy, r)) return false;
-  int cand[3][4], n[3];
-  for (int a = 0; a < 3; ++a) {
-    n[a] = 0;
-    const double u = cx - double(x[a]), v = cy - double(y[a]), tol = 1e-9 * (1 + r);
-    for (int k = 0; k < 8 && n[a] < 4; ++k) {
-      // Side k at eps = 0, and the sign of its eps part: k = 0..3 x dominant, 4..7 y.
-      const bool xs = k < 4;
-      const double major = xs ? (k < 2 ? u : -u) : (k < 6 ? v : -v);
-      const double minor = xs ? v : u;
-      const int msign = (k % 2 == 0) ? 1 : -1;
-      if (std::fabs(major - std::max(std::fabs(u), std::fabs(v))) > tol) continue;
-      if (minor * msign < -tol) continue;
-      cand[a][n[a]++] = k;
+  unsigned cand[3] = {0, 0, 0};
+  bool any = false;
+  squares_through(x, y, [&](double cx, double cy, double) {
+    any = true;
+    for (int a = 0; a < 3; ++a) {
+      const double u = cx - double(x[a]), v = cy - double(y[a]), m = std::max(std::fabs(u), std::fabs(v));
+      if (u == m) cand[a] |= 0x03u;
+      if (-u == m) cand[a] |= 0x0cu;
+      if (v == m) cand[a] |= 0x30u;
+      if (-v == m) cand[a] |= 0xc0u;
     }
-  }
-  for (int i = 0; i < n[0]; ++i)
-    for (int j = 0; j < n[1]; ++j)
-      for (int k = 0; k < n[2]; ++k) {
-        const int side[3] = {cand[0][i], cand[1][j], cand[2][k]};
-        if (ball_on_sides(x, y, side, out)) return true;
-      }
-  for (int i = 0; i < 8; ++i)
-    for (int j = 0; j < 8; ++j)
-      for (int k = 0; k < 8; ++k) {
-        const int side[3] = {i, j, k};
-        if (ball_on_sides(x, y, side, out)) return true;
-      }
-  return false;
+  });
+  if (!any) return false;
+  if (ball_among(x, y, cand, out)) return true;
+  const unsigned first[3] = {cand[0], cand[1], cand[2]};
+  square_vertex_sides(x, y, cand);
+  if ((cand[0] != first[0] || cand[1] != first[1] || cand[2] != first[2]) && ball_among(x, y, cand, out)) return true;
+  const unsigned all[3] = {0xffu, 0xffu, 0xffu};
+  return ball_among(x, y, all, out);
 }
 
 struct Predicates {

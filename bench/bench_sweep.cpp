@@ -1,0 +1,102 @@
+// The sweep-line builder against Boost.Polygon's Euclidean construct_voronoi and the
+// subdivision builder, on the same point sites, one thread each, in one run.
+//
+//   build/bench_sweep [runs=3] [max_points=1000000]
+//
+// Prints one markdown row an input: the best of `runs` timings of each (alternating), the
+// ratios sweep / Boost and subdivision / sweep, and whether the two L-inf builders gave the
+// same number of pieces. Point sites only: that is what the sweep takes so far.
+#include <algorithm>
+#include <boost/polygon/voronoi.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "linf/diagram/builder.hpp"
+#include "linf/diagram/diagram.hpp"
+#include "linf/diagram/sweep.hpp"
+#include "linf/geometry/sites.hpp"
+
+using namespace linf;
+
+namespace {
+
+double seconds(const std::function<void()>& f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<Point> random_points(std::size_t n, int range, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> c(0, range);
+  std::set<std::pair<int, int>> seen;
+  std::vector<Point> p;
+  while (p.size() < n) {
+    const int x = c(rng), y = c(rng);
+    if (seen.insert({x, y}).second) p.push_back({x, y});
+  }
+  return p;
+}
+
+// The corners of a block of wires: rows of rectangles 16-48 DBU wide, 32-DBU spaces, on a
+// 64-DBU row pitch (a routed metal layer's vertices: many on one line, many on one diagonal).
+std::vector<Point> wire_corners(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_int_distribution<int> len(40, 400), width(16, 48);
+  std::vector<Point> p;
+  const int rows = int(std::sqrt(double(n) / 4 / 8)) + 1;
+  std::vector<int> x(rows, 0);
+  for (int r = 0; p.size() < n; r = (r + 1) % rows) {
+    const int w = width(rng), l = len(rng), y = r * 64;
+    p.push_back({x[r], y}), p.push_back({x[r] + l, y}), p.push_back({x[r] + l, y + w}), p.push_back({x[r], y + w});
+    x[r] += l + 32;
+  }
+  p.resize(n);
+  return p;
+}
+
+void row(const std::string& name, const std::vector<Point>& pts, int runs) {
+  std::vector<boost::polygon::point_data<int>> bp;
+  for (const Point& q : pts) bp.push_back({int(q.x), int(q.y)});
+  const Sites s = sites_of_plain(pts, {});
+  const Box clip = clip_box(s);
+  BuildOptions one;
+  one.threads = 1;
+  double tb = 1e30, ts = 1e30, tsub = 1e30;
+  std::size_t ns = 0, nsub = 0;
+  for (int r = 0; r < runs; ++r) {
+    tb = std::min(tb, seconds([&] {
+      boost::polygon::voronoi_diagram<double> vd;
+      boost::polygon::construct_voronoi(bp.begin(), bp.end(), &vd);
+    }));
+    ts = std::min(ts, seconds([&] { ns = sweep_pieces(s, clip).size(); }));
+    tsub = std::min(tsub, seconds([&] { nsub = build_pieces(s, clip, one).size(); }));
+  }
+  std::printf("| %s | %zu | %.3f s | %.3f s | %.3f s | %.2f | %.2f | %s |\n", name.c_str(), pts.size(), tb, ts, tsub,
+              ts / tb, tsub / ts, ns == nsub ? "yes" : "NO");
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int runs = argc > 1 ? std::atoi(argv[1]) : 3;
+  const std::size_t most = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1000000;
+  std::printf("| input | points | Boost.Polygon L2, 1 thread | sweep, 1 thread | subdivision, 1 thread | sweep / Boost | "
+              "subdivision / sweep | same pieces |\n|---|---|---|---|---|---|---|---|\n");
+  for (std::size_t n : {std::size_t(10000), std::size_t(100000), std::size_t(1000000)}) {
+    if (n > most) break;
+    row("random, 2^20 square", random_points(n, 1 << 20, 1), runs);
+  }
+  if (most >= 100000) row("random on a 400 x 400 grid (ties)", random_points(100000, 400, 2), runs);
+  if (most >= 100000) row("wire corners", wire_corners(100000, 3), runs);
+  if (most >= 1000000) row("wire corners", wire_corners(1000000, 3), runs);
+  return 0;
+}
