@@ -10,6 +10,7 @@
 #include <deque>
 #include <stdexcept>
 #include <tuple>
+#include <unordered_map>
 
 #include "linf/diagram/builder.hpp"
 #include "diagram/sweep/bisector.hpp"
@@ -30,15 +31,28 @@ struct Topology {
   };
   std::deque<Half> halves;  // twins are 2i and 2i + 1; a deque keeps them in place
   std::vector<Vec2> vertices;
+  // Our site of a site event: a segment's by its insertion index; a point's by its place (Boost
+  // keeps one event of a place where several segments end).
+  std::vector<std::int32_t> segment_site;
+  std::unordered_map<std::uint64_t, std::int32_t> point_site;
+  static std::uint64_t key(std::int64_t x, std::int64_t y) {
+    return (std::uint64_t(std::uint32_t(std::int32_t(x))) << 32) | std::uint32_t(std::int32_t(y));
+  }
+  template <typename Site>
+  std::int32_t site_of(const Site& e) const {
+    if (e.is_segment()) return segment_site[e.initial_index()];
+    const auto it = point_site.find(key(e.x0(), e.y0()));
+    return it == point_site.end() ? -1 : it->second;
+  }
 
   void _reserve(std::size_t) {}
   template <typename Site>
   void _process_single_site(const Site&) {}
   template <typename Site>
   std::pair<void*, void*> _insert_new_edge(const Site& s1, const Site& s2) {
-    halves.push_back({std::int32_t(s1.initial_index())});
+    halves.push_back({site_of(s1)});
     Half* h1 = &halves.back();
-    halves.push_back({std::int32_t(s2.initial_index())});
+    halves.push_back({site_of(s2)});
     return {h1, &halves.back()};
   }
   template <typename Site, typename Circle>
@@ -71,24 +85,40 @@ bool clip_segment(Vec2& p, Vec2& q, const Box& b) {
   return t1 > t0;
 }
 
-double linf_distance(const Vec2& v, const Point& s) {
-  return std::max(std::fabs(v.x - double(s.x)), std::fabs(v.y - double(s.y)));
+// L-inf distance from v to a site: a point, or an axis-parallel segment (closed).
+double linf_distance(const Vec2& v, const Site& s) {
+  const double dx = std::max({double(std::min(s.a.x, s.b.x)) - v.x, 0.0, v.x - double(std::max(s.a.x, s.b.x))});
+  const double dy = std::max({double(std::min(s.a.y, s.b.y)) - v.y, 0.0, v.y - double(std::max(s.a.y, s.b.y))});
+  return std::max(dx, dy);
 }
 
 }  // namespace
 
 bool sweep_handles(const Sites& sites) {
-  for (std::size_t i = 0; i < sites.sites.size(); ++i)
-    if (!sites.sites[i].is_point()) return false;
+  for (std::size_t i = 0; i < sites.sites.size(); ++i) {
+    const Site& s = sites.sites[i];
+    if (!s.is_point() && s.a.x != s.b.x && s.a.y != s.b.y) return false;
+  }
   return true;
 }
 
 std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats* stats) {
-  if (!sweep_handles(sites)) throw std::invalid_argument("sweep builder: segment sites are not supported yet");
+  if (!sweep_handles(sites))
+    throw std::invalid_argument("sweep builder: only points and axis-parallel segments so far");
   const SiteList& S = sites.sites;
   boost::polygon::voronoi_builder<std::int32_t, sweep::CoordinateTraits, sweep::Predicates> vb;
-  for (std::size_t i = 0; i < S.size(); ++i) vb.insert_point(std::int32_t(S[i].a.x), std::int32_t(S[i].a.y));
   Topology topo;
+  for (std::size_t i = 0; i < S.size(); ++i) {
+    const Site& s = S[i];
+    if (s.is_point()) {
+      vb.insert_point(std::int32_t(s.a.x), std::int32_t(s.a.y));
+      topo.point_site.emplace(Topology::key(s.a.x, s.a.y), std::int32_t(i));
+      topo.segment_site.push_back(-1);
+    } else {
+      vb.insert_segment(std::int32_t(s.a.x), std::int32_t(s.a.y), std::int32_t(s.b.x), std::int32_t(s.b.y));
+      topo.segment_site.push_back(std::int32_t(i));
+    }
+  }
   vb.construct(&topo);
 
   // Far enough along any bisector to be outside the box: the bisectors' slopes are at most 1.
@@ -99,39 +129,44 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
     std::size_t first, last;
   };
   std::vector<Span> spans;  // each edge's pieces in `out`
+  auto emit = [&](Vec2 p, Vec2 q, std::int32_t u, std::int32_t w) {
+    if (!clip_segment(p, q, clip)) return;
+    if (p.x == q.x && p.y == q.y) return;
+    Piece pc;
+    pc.p = p, pc.q = q;
+    pc.a = std::min(u, w), pc.b = std::max(u, w);
+    pc.d1 = linf_distance(p, S[u]), pc.d2 = linf_distance(q, S[u]);
+    out.push_back(pc);
+  };
   for (std::size_t e = 0; e + 1 < topo.halves.size(); e += 2) {
     const Topology::Half &h = topo.halves[e], &g = topo.halves[e + 1];
-    const Point &s = S[h.site].a, &t = S[g.site].a;
-    const sweep::PointBisector b(s, t);
-    double from, to;  // the edge's parameter range, walked from h's vertex to g's
-    if (h.vertex0 >= 0 && g.vertex0 >= 0) {
-      from = b.param(topo.vertices[h.vertex0]), to = b.param(topo.vertices[g.vertex0]);
-    } else if (h.vertex0 >= 0 || g.vertex0 >= 0) {
-      // The edge runs from its vertex to infinity with the vertex's half-edge's site on its left.
-      const bool from_h = h.vertex0 >= 0;
-      const Point &left = from_h ? s : t, &right = from_h ? t : s;
-      from = b.param(topo.vertices[from_h ? h.vertex0 : g.vertex0]);
-      to = sweep::PointBisector::left_of_growing(left, right) ? from + reach : from - reach;
-    } else {
-      from = -reach, to = reach;
-    }
-    if (from > to) std::swap(from, to);
-    double cuts[4] = {from, 0, 0, to};
-    int n = 1;
-    if (b.half > 0 && b.slope != 0)  // bends; else the bisector is one straight line
-      for (double c : {b.mid_p - b.half, b.mid_p + b.half})
-        if (c > from && c < to) cuts[n++] = c;
-    cuts[n++] = to;
+    if (h.site < 0 || g.site < 0) throw std::logic_error("sweep builder: a site event without its site");
+    const Site &s = S[h.site], &t = S[g.site];
+    const sweep::Bisector b(s, t);
     const std::size_t first = out.size();
-    for (int i = 0; i + 1 < n; ++i) {
-      Vec2 p = b.point(cuts[i]), q = b.point(cuts[i + 1]);
-      if (!clip_segment(p, q, clip)) continue;
-      if (p.x == q.x && p.y == q.y) continue;
-      Piece pc;
-      pc.p = p, pc.q = q;
-      pc.a = std::min(h.site, g.site), pc.b = std::max(h.site, g.site);
-      pc.d1 = linf_distance(p, s), pc.d2 = linf_distance(q, s);
-      out.push_back(pc);
+    if (b.straight) {
+      if (h.vertex0 < 0 || g.vertex0 < 0) throw std::logic_error("sweep builder: an unbounded diagonal edge");
+      emit(topo.vertices[h.vertex0], topo.vertices[g.vertex0], h.site, g.site);
+    } else {
+      double from, to;  // the edge's parameter range, walked from h's vertex to g's
+      if (h.vertex0 >= 0 && g.vertex0 >= 0) {
+        from = b.param(topo.vertices[h.vertex0]), to = b.param(topo.vertices[g.vertex0]);
+      } else if (h.vertex0 >= 0 || g.vertex0 >= 0) {
+        // From its vertex to infinity with the vertex's half-edge's site on its left.
+        const bool from_h = h.vertex0 >= 0;
+        from = b.param(topo.vertices[from_h ? h.vertex0 : g.vertex0]);
+        to = b.left_of_growing(from_h ? s : t, from_h ? t : s) ? from + reach : from - reach;
+      } else {
+        from = -reach, to = reach;
+      }
+      if (from > to) std::swap(from, to);
+      double cuts[4] = {from, 0, 0, to};
+      int n = 1;
+      if (b.bends())
+        for (double c : {b.mid_p - b.half, b.mid_p + b.half})
+          if (c > from && c < to) cuts[n++] = c;
+      cuts[n++] = to;
+      for (int i = 0; i + 1 < n; ++i) emit(b.point(cuts[i]), b.point(cuts[i + 1]), h.site, g.site);
     }
     if (out.size() > first) spans.push_back({first, out.size()});
   }

@@ -114,6 +114,22 @@ TEST(Sweep, TheCheckerPassesItsDiagrams) {
   }
 }
 
+TEST(Sweep, DISABLED_ManhattanLayoutsAsTheSubdivision) {
+  // Merged rectilinear layouts: every vertex a point site, every edge an axis-parallel segment.
+  int failed = 0;
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    const Sites s = sites_of_polygons(merge_polygons(linf::testing::random_layout(seed, linf::testing::Style::Rectilinear, 1 + int(seed % 10))));
+    std::string d;
+    try {
+      d = difference(s);
+    } catch (const std::exception& e) {
+      d = std::string("threw ") + e.what();
+    }
+    if (!d.empty() && ++failed <= 5) ADD_FAILURE() << "seed " << seed << ": " << d;
+  }
+  EXPECT_EQ(failed, 0);
+}
+
 TEST(Sweep, Stress) {
   const char* env = std::getenv("SWEEP_STRESS");
   // On request (SWEEP_STRESS=N sets): up to 100 points, ranges 5 to 2^29.

@@ -36,13 +36,24 @@ struct Side {
   Eps alpha, beta;
 };
 inline const Side* sides() {
-  static const Side s[8] = {
+  static const Side s[12] = {
       {Eps::of(1, 1), Eps::of(0, 1)},  {Eps::of(1, 1), Eps::of(0, -1)},   // x dominant, right
       {Eps::of(-1, -1), Eps::of(0, 1)}, {Eps::of(-1, -1), Eps::of(0, -1)},  // x dominant, left
       {Eps::of(0, 1), Eps::of(1, 1)},  {Eps::of(0, -1), Eps::of(1, 1)},    // y dominant, up
       {Eps::of(0, 1), Eps::of(-1, -1)}, {Eps::of(0, -1), Eps::of(-1, -1)},  // y dominant, down
+      // A segment's line touched by the ball (N_eps of a point's distance to an axis-parallel
+      // line is (1 + eps) times the L-inf one): the ball left of (below, right of, above) it.
+      {Eps::of(-1, -1), Eps(0)}, {Eps(0), Eps::of(-1, -1)}, {Eps::of(1, 1), Eps(0)}, {Eps(0), Eps::of(1, 1)},
   };
   return s;
+}
+// Side 8 + segment_side(...): the side of an axis-parallel segment's line that its arc (Boost's
+// site event, possibly inverted) lies on: the right of point0 -> point1.
+constexpr int kLineLeftOfIt = 8, kLineBelowIt = 9, kLineRightOfIt = 10, kLineAboveIt = 11;
+template <typename Site>
+int segment_side(const Site& s) {
+  if (s.x0() == s.x1()) return s.y1() > s.y0() ? kLineRightOfIt : kLineLeftOfIt;  // up: right is +x
+  return s.x1() > s.x0() ? kLineBelowIt : kLineAboveIt;
 }
 
 inline int orientation(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by, std::int64_t cx,
@@ -96,9 +107,10 @@ struct Ball {
   Eps cx, cy, r, den;  // centre (cx, cy) / den, radius r / den; den > 0
 };
 
-// The ball for sides side[0..2] of the three points, if those sides are the outermost at its
-// centre. Rows (alpha, beta, -1) . (cx, cy, r) = alpha x + beta y, by Cramer's rule through the
-// 2x2 minors of the sides (the third column is constant).
+// The ball for sides side[0..2] of the three sites (anchors x, y: a point site, or a point of
+// a segment's line, whose side is one of the line forms 8..11), if each point's side is the
+// outermost at its centre. Rows (alpha, beta, -1) . (cx, cy, r) = alpha x + beta y, by
+// Cramer's rule through the 2x2 minors of the sides (the third column is constant).
 inline bool ball_on_sides(const std::int64_t x[3], const std::int64_t y[3], const int side[3], Ball& out) {
   const Side* S = sides();
   const Side &f1 = S[side[0]], &f2 = S[side[1]], &f3 = S[side[2]];
@@ -112,8 +124,9 @@ inline bool ball_on_sides(const std::int64_t x[3], const std::int64_t y[3], cons
   Eps cy = -(f2.alpha * h3 - f3.alpha * h2 - f1.alpha * h3 + f3.alpha * h1 + f1.alpha * h2 - f2.alpha * h1);
   Eps r = h1 * m23 - h2 * m13 + h3 * m12;
   if (d.sign() < 0) d = -d, cx = -cx, cy = -cy, r = -r;
-  if (r.sign() <= 0) return false;
+  if (r.sign() < 0) return false;  // radius 0: a corner, where two edges meet their common end
   for (int a = 0; a < 3; ++a) {
+    if (side[a] >= 8) continue;  // a line: touched by construction
     const Eps u = cx - Eps(x[a]) * d, v = cy - Eps(y[a]) * d;
     for (int k = 0; k < 8; ++k) {
       if (k == side[a]) continue;
@@ -153,21 +166,33 @@ void squares_through(const std::int64_t x[3], const std::int64_t y[3], F f) {
   }
 }
 
-// Every vertex of the set of L-inf squares through the three points: three independent
-// conditions "point a on side s" (up to two a point, at a corner) met by a square that holds
-// all three. The bits of the sides each point lies on at some vertex are or-ed into cand
-// (both eps sides of each L-inf side). In doubled coordinates, integers: exact.
-inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3], unsigned cand[3]) {
-  static const int A[4] = {1, -1, 0, 0}, B[4] = {0, 0, 1, -1};
+// Every vertex of the set of L-inf squares through the three sites (a point on a side of the
+// square, a segment's line on the side facing it): three independent conditions, each "point
+// a on side s" (up to two a point, at a corner) or a line's (each line's among them), met by a
+// square that holds all the points. The bits of the sides each point lies on at some vertex
+// are or-ed into cand (both eps sides of each L-inf side). In doubled coordinates: exact.
+inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3], const int fixed[3], unsigned cand[3]) {
+  static const int A[12] = {1, -1, 0, 0, 0, 0, 0, 0, -1, 0, 1, 0}, B[12] = {0, 0, 1, -1, 0, 0, 0, 0, 0, -1, 0, 1};
+  int cons[12][2], n = 0, lines = 0;  // (site, L-inf side 0..3 or line form 8..11)
+  for (int a = 0; a < 3; ++a) {
+    if (fixed[a] >= 0) {
+      cons[n][0] = a, cons[n][1] = fixed[a], ++n, ++lines;
+    } else {
+      for (int sd = 0; sd < 4; ++sd) cons[n][0] = a, cons[n][1] = sd, ++n;
+    }
+  }
   bool any = false;
-  for (int c1 = 0; c1 < 12; ++c1)
-    for (int c2 = c1 + 1; c2 < 12; ++c2)
-      for (int c3 = c2 + 1; c3 < 12; ++c3) {
+  for (int c1 = 0; c1 < n; ++c1)
+    for (int c2 = c1 + 1; c2 < n; ++c2)
+      for (int c3 = c2 + 1; c3 < n; ++c3) {
         const int cs[3] = {c1, c2, c3};
+        int with_lines = 0;
+        for (int c : cs) with_lines += cons[c][1] >= 8;
+        if (with_lines != lines) continue;
         // Rows (A, B, -1) . (cx, cy, r) = A x_a + B y_a.
         std::int64_t m[3][3], h[3];
         for (int t = 0; t < 3; ++t) {
-          const int a = cs[t] / 4, sd = cs[t] % 4;
+          const int a = cons[cs[t]][0], sd = cons[cs[t]][1];
           m[t][0] = A[sd], m[t][1] = B[sd], m[t][2] = -1, h[t] = A[sd] * x[a] + B[sd] * y[a];
         }
         auto det = [](const std::int64_t q[3][3]) {
@@ -183,13 +208,14 @@ inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3]
             for (int u = 0; u < 3; ++u) q[t][u] = u == c ? h[t] : m[t][u];
           sol[c] = 2 * det(q) / d;
         }
-        if (sol[2] <= 0) continue;
+        if (sol[2] < 0) continue;
         bool ok = true;
         for (int a = 0; a < 3 && ok; ++a)
-          ok = std::max(std::llabs(sol[0] - 2 * x[a]), std::llabs(sol[1] - 2 * y[a])) == sol[2];
+          if (fixed[a] < 0) ok = std::max(std::llabs(sol[0] - 2 * x[a]), std::llabs(sol[1] - 2 * y[a])) == sol[2];
         if (!ok) continue;
         any = true;
         for (int a = 0; a < 3; ++a) {
+          if (fixed[a] >= 0) continue;
           const std::int64_t u = sol[0] - 2 * x[a], v = sol[1] - 2 * y[a];
           if (u == sol[2]) cand[a] |= 0x03u;
           if (-u == sol[2]) cand[a] |= 0x0cu;
@@ -203,11 +229,11 @@ inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3]
 // The first choice of sides among the candidates (bit k of cand[a]: side k for point a) that
 // gives a ball.
 inline bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const unsigned cand[3], Ball& out) {
-  for (int i = 0; i < 8; ++i) {
+  for (int i = 0; i < 12; ++i) {
     if (!(cand[0] >> i & 1u)) continue;
-    for (int j = 0; j < 8; ++j) {
+    for (int j = 0; j < 12; ++j) {
       if (!(cand[1] >> j & 1u)) continue;
-      for (int k = 0; k < 8; ++k) {
+      for (int k = 0; k < 12; ++k) {
         if (!(cand[2] >> k & 1u)) continue;
         const int side[3] = {i, j, k};
         if (ball_on_sides(x, y, side, out)) return true;
@@ -240,10 +266,30 @@ inline bool ball_through(const std::int64_t x[3], const std::int64_t y[3], Ball&
   if (!any) return false;
   if (ball_among(x, y, cand, out)) return true;
   const unsigned first[3] = {cand[0], cand[1], cand[2]};
-  square_vertex_sides(x, y, cand);
+  const int none[3] = {-1, -1, -1};
+  square_vertex_sides(x, y, none, cand);
   if ((cand[0] != first[0] || cand[1] != first[1] || cand[2] != first[2]) && ball_among(x, y, cand, out)) return true;
   const unsigned all[3] = {0xffu, 0xffu, 0xffu};
   return ball_among(x, y, all, out);
+}
+
+// The ball touching three sites of which some are segments (fixed[a]: the side of its line
+// the segment's arc faces, or -1 for a point; x, y: the point, or the segment's point0).
+inline bool ball_touching(const std::int64_t x[3], const std::int64_t y[3], const int fixed[3], Ball& out) {
+  unsigned cand[3] = {0, 0, 0};
+  for (int a = 0; a < 3; ++a)
+    if (fixed[a] >= 0) cand[a] = 1u << fixed[a];
+  const unsigned lines[3] = {cand[0], cand[1], cand[2]};
+  if (!square_vertex_sides(x, y, fixed, cand)) return false;
+  if (ball_among(x, y, cand, out)) return true;
+  unsigned all[3];
+  for (int a = 0; a < 3; ++a) all[a] = fixed[a] >= 0 ? lines[a] : 0xffu;
+  return ball_among(x, y, all, out);
+}
+
+inline int orientation128(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by) {
+  const __int128 v = __int128(ax) * by - __int128(ay) * bx;
+  return v > 0 ? 1 : (v < 0 ? -1 : 0);
 }
 
 struct Predicates {
@@ -285,12 +331,26 @@ struct Predicates {
   };
 
   // Whether the horizontal through a new point meets the right (upper) arc of the pair first,
-  // i.e. the point lies above their breakpoint; false on the breakpoint.
+  // i.e. the point lies above their breakpoint; false on the breakpoint. Boost's structure:
+  // the shortcuts tell which of two crossings a node stands for, the arcs' distances decide
+  // the rest. A segment's arc is at the distance of its line, which for an axis-parallel line
+  // is the same in N_eps as in L2 (|dy|, or dx / 2 for a vertical one), so the segment cases'
+  // shortcuts (sides of lines, the 45-degree lines through a point) hold as they are.
   template <typename Site>
   struct distance_predicate {
     template <typename Point>
     bool operator()(const Site& left, const Site& right, const Point& p) const {
-      if (left.is_segment() || right.is_segment()) throw std::logic_error("sweep: segment sites not supported yet");
+      if (!left.is_segment()) {
+        if (!right.is_segment()) return pp(left, right, p);
+        return ps(left, right, p, false);
+      }
+      if (!right.is_segment()) return ps(right, left, p, true);
+      return ss(left, right, p);
+    }
+
+   private:
+    template <typename Point>
+    static bool pp(const Site& left, const Site& right, const Point& p) {
       const auto &a = left.point0(), &b = right.point0();
       if (a.x() > b.x()) {
         if (p.y() <= a.y()) return false;  // the newer arc below: the breakpoint is above it
@@ -300,6 +360,59 @@ struct Predicates {
         return std::int64_t(a.y()) + b.y() < 2 * std::int64_t(p.y());
       }
       return arc_nearer(a.x(), a.y(), b.x(), b.y(), p.x(), p.y()) > 0;
+    }
+
+    // t of a segment's arc (its line's) at p's height, the sweep at p.x.
+    template <typename Point>
+    static Ratio segment_arc(const Site& s, const Point& p) {
+      if (s.x0() == s.x1()) return Ratio(Eps(std::int64_t(p.x()) - s.x0()), Eps(2));
+      return Ratio(std::llabs(std::int64_t(p.y()) - s.y0()));
+    }
+
+    enum { kLess = -1, kUndefined = 0, kMore = 1 };
+
+    template <typename Point>
+    static int fast_ps(const Site& point, const Site& seg, const Point& p, bool reverse) {
+      const auto& a = point.point0();
+      const std::int64_t sx0 = seg.x0(), sy0 = seg.y0(), sx1 = seg.x1(), sy1 = seg.y1();
+      if (orientation(sx0, sy0, sx1, sy1, p.x(), p.y()) != -1) return !seg.is_inverse() ? kLess : kMore;
+      const std::int64_t dx = std::int64_t(p.x()) - a.x(), dy = std::int64_t(p.y()) - a.y();
+      if (sx0 == sx1) {
+        if (p.y() < a.y() && !reverse) return kMore;
+        if (p.y() > a.y() && reverse) return kLess;
+        return kUndefined;
+      }
+      if (orientation128(sx1 - sx0, sy1 - sy0, dx, dy) == 1) {
+        if (!seg.is_inverse()) return reverse ? kLess : kUndefined;
+        return reverse ? kUndefined : kMore;
+      }
+      // Boost's a (dy + dx)(dy - dx) against 2 b dx dy, b = 0 for a horizontal segment: which
+      // side of the 45-degree lines through the point.
+      const __int128 l = __int128(sx1 - sx0) * (dy + dx) * (dy - dx), r = __int128(2) * (sy1 - sy0) * dx * dy;
+      if (l != r) {
+        if ((l > r) ^ reverse) return reverse ? kLess : kMore;
+        return kUndefined;
+      }
+      return kUndefined;
+    }
+
+    template <typename Point>
+    static bool ps(const Site& point, const Site& seg, const Point& p, bool reverse) {
+      const int fast = fast_ps(point, seg, p, reverse);
+      if (fast != kUndefined) return fast == kLess;
+      Ratio tp;
+      const bool reach = arc_distance(point.x0(), point.y0(), p.x(), p.y(), tp);
+      const Ratio ts = segment_arc(seg, p);
+      // Boost: reverse ^ (dist_point < dist_segment), its distances being -t.
+      const bool point_farther = !reach || compare(tp, ts) > 0;
+      return reverse ^ point_farther;
+    }
+
+    template <typename Point>
+    static bool ss(const Site& left, const Site& right, const Point& p) {
+      if (left.sorted_index() == right.sorted_index())  // a segment's two arcs: its own line
+        return orientation(left.x0(), left.y0(), left.x1(), left.y1(), p.x(), p.y()) == 1;
+      return compare(segment_arc(left, p), segment_arc(right, p)) > 0;
     }
   };
 
@@ -353,19 +466,77 @@ struct Predicates {
     distance_predicate<site_type> distance_;
   };
 
-  // Three consecutive arcs (bottom to top) whose middle one will vanish: the points turn
-  // clockwise (as in any convex distance) and a ball of N_eps passes through them.
+  // Three consecutive arcs (bottom to top) whose middle one will vanish: Boost's existence
+  // tests (orientations of the sites and of the segments' arcs, no metric in them) and a ball
+  // of N_eps touching the three: the points on it, each segment's line from its arc's side.
   template <typename Site, typename Circle>
   struct circle_formation_predicate {
     bool operator()(const Site& s1, const Site& s2, const Site& s3, Circle& c) const {
-      if (s1.is_segment() || s2.is_segment() || s3.is_segment())
-        throw std::logic_error("sweep: segment sites not supported yet");
-      if (orientation(s1.x(), s1.y(), s2.x(), s2.y(), s3.x(), s3.y()) >= 0) return false;
-      const std::int64_t x[3] = {s1.x(), s2.x(), s3.x()}, y[3] = {s1.y(), s2.y(), s3.y()};
+      const Site* s[3] = {&s1, &s2, &s3};
+      int segments = 0;
+      for (const Site* t : s) segments += t->is_segment();
+      if (segments == 0) {
+        if (orientation(s1.x(), s1.y(), s2.x(), s2.y(), s3.x(), s3.y()) >= 0) return false;
+      } else if (!s1.is_segment() && !s2.is_segment()) {
+        if (!pps(s1, s2, s3, 3)) return false;
+      } else if (!s1.is_segment() && !s3.is_segment()) {
+        if (!pps(s1, s3, s2, 2)) return false;
+      } else if (!s2.is_segment() && !s3.is_segment()) {
+        if (!pps(s2, s3, s1, 1)) return false;
+      } else if (!s1.is_segment()) {
+        if (!pss(s1, s2, s3, 1)) return false;
+      } else if (!s2.is_segment()) {
+        if (!pss(s2, s1, s3, 2)) return false;
+      } else if (!s3.is_segment()) {
+        if (!pss(s3, s1, s2, 3)) return false;
+      } else if (s1.sorted_index() == s2.sorted_index() || s2.sorted_index() == s3.sorted_index()) {
+        return false;
+      }
+      std::int64_t x[3], y[3];
+      int fixed[3];
+      for (int a = 0; a < 3; ++a) {
+        x[a] = s[a]->x0(), y[a] = s[a]->y0();
+        fixed[a] = s[a]->is_segment() ? segment_side(*s[a]) : -1;
+      }
       Ball b;
-      if (!ball_through(x, y, b)) return false;
+      if (segments == 0 ? !ball_through(x, y, b) : !ball_touching(x, y, fixed, b)) return false;
       const Eps one_eps = Eps::of(1, 1);
       c = Circle(Ratio(b.cx, b.den), Ratio(b.cy, b.den), Ratio(b.cx * one_eps + b.r, b.den * one_eps));
+      // Boost's last test: a vertical segment's arc ends at its endpoints' heights.
+      for (const Site* t : s) {
+        if (!t->is_segment() || t->x0() != t->x1()) continue;
+        const std::int64_t lo = std::min(t->y0(), t->y1()), hi = std::max(t->y0(), t->y1());
+        if (compare(c.y(), Ratio(lo)) < 0 || compare(c.y(), Ratio(hi)) > 0) return false;
+      }
+      return true;
+    }
+
+   private:
+    // Boost's circle_existence_predicate for two points and a segment (segment_index: where
+    // the segment is among the three arcs) and for a point and two segments (point_index).
+    static bool pps(const Site& p1, const Site& p2, const Site& seg, int segment_index) {
+      if (segment_index != 2) {
+        const int o1 = orientation(p1.x(), p1.y(), p2.x(), p2.y(), seg.x0(), seg.y0());
+        const int o2 = orientation(p1.x(), p1.y(), p2.x(), p2.y(), seg.x1(), seg.y1());
+        if (segment_index == 1 && p1.x0() >= p2.x0()) {
+          if (o1 != -1) return false;
+        } else if (segment_index == 3 && p2.x0() >= p1.x0()) {
+          if (o2 != -1) return false;
+        } else if (o1 != -1 && o2 != -1) {
+          return false;
+        }
+        return true;
+      }
+      return seg.point0() != p1.point0() || seg.point1() != p2.point0();
+    }
+    static bool pss(const Site& p, const Site& s2, const Site& s3, int point_index) {
+      if (s2.sorted_index() == s3.sorted_index()) return false;
+      if (point_index == 2) {
+        if (!s2.is_inverse() && s3.is_inverse()) return false;
+        if (s2.is_inverse() == s3.is_inverse() &&
+            orientation(s2.x0(), s2.y0(), p.x0(), p.y0(), s3.x1(), s3.y1()) != -1)
+          return false;
+      }
       return true;
     }
   };
