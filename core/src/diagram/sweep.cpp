@@ -9,6 +9,7 @@
 #include <cmath>
 #include <deque>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 #include <unordered_map>
 
@@ -145,7 +146,9 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
     const sweep::Bisector b(s, t);
     const std::size_t first = out.size();
     if (b.straight) {
-      if (h.vertex0 < 0 || g.vertex0 < 0) throw std::logic_error("sweep builder: an unbounded diagonal edge");
+      if (h.vertex0 < 0 || g.vertex0 < 0)
+        throw std::logic_error("sweep builder: an unbounded diagonal edge between sites " + std::to_string(h.site) +
+                               " and " + std::to_string(g.site));
       emit(topo.vertices[h.vertex0], topo.vertices[g.vertex0], h.site, g.site);
     } else {
       double from, to;  // the edge's parameter range, walked from h's vertex to g's

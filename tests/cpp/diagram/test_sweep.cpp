@@ -114,7 +114,7 @@ TEST(Sweep, TheCheckerPassesItsDiagrams) {
   }
 }
 
-TEST(Sweep, DISABLED_ManhattanLayoutsAsTheSubdivision) {
+TEST(Sweep, ManhattanLayoutsAsTheSubdivision) {
   // Merged rectilinear layouts: every vertex a point site, every edge an axis-parallel segment.
   int failed = 0;
   for (std::uint64_t seed = 1; seed <= 200; ++seed) {

@@ -93,4 +93,15 @@ inline int compare(const Ratio& a, const Ratio& b) {
   return 0;
 }
 
+// The sign at 0+ of a * d - b * c, every order kept (the four may be cubic).
+inline int sign_of_cross(const Eps& a, const Eps& b, const Eps& c, const Eps& d) {
+  for (int k = 0; k < 2 * kTerms - 1; ++k) {
+    __int128 v = 0;
+    for (int i = std::max(0, k - kTerms + 1); i <= std::min(k, kTerms - 1); ++i)
+      v += __int128(a.c[i]) * d.c[k - i] - __int128(b.c[i]) * c.c[k - i];
+    if (v != 0) return v < 0 ? -1 : 1;
+  }
+  return 0;
+}
+
 }  // namespace linf::sweep

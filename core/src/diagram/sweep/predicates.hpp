@@ -226,9 +226,37 @@ inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3]
   return any;
 }
 
-// The first choice of sides among the candidates (bit k of cand[a]: side k for point a) that
-// gives a ball.
-inline bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const unsigned cand[3], Ball& out) {
+// Where a ball touches a segment's line: its centre's x (a horizontal line) or y (a vertical
+// one) must lie within the segment's closed span [lo, hi], or the ball touches the line
+// beside the segment.
+struct Span {
+  std::int64_t lo = 0, hi = -1;  // empty: a point site
+};
+inline bool touches_within(const Ball& b, int side, const Span& sp) {
+  if (sp.hi < sp.lo) return true;
+  const Eps& c = (side == kLineBelowIt || side == kLineAboveIt) ? b.cx : b.cy;
+  return (c - Eps(sp.lo) * b.den).sign() >= 0 && (Eps(sp.hi) * b.den - c).sign() >= 0;
+}
+
+// Whether the ball meets the three sites counter-clockwise (bottom arc, middle, top): where
+// it touches a point is the point, a horizontal line (cx, y0), a vertical one (x0, cy). An
+// event whose middle arc vanishes meets them clockwise (as the three points of Boost's point
+// case must turn); touches that coincide (a corner, an edge at its own end) decide nothing.
+inline bool turns_left(const std::int64_t x[3], const std::int64_t y[3], const int side[3], const Ball& b) {
+  Eps tx[3], ty[3];  // times den
+  for (int a = 0; a < 3; ++a) {
+    const bool horizontal_line = side[a] == kLineBelowIt || side[a] == kLineAboveIt;
+    const bool vertical_line = side[a] == kLineLeftOfIt || side[a] == kLineRightOfIt;
+    tx[a] = horizontal_line ? b.cx : Eps(x[a]) * b.den;
+    ty[a] = vertical_line ? b.cy : Eps(y[a]) * b.den;
+  }
+  return sign_of_cross(tx[1] - tx[0], ty[1] - ty[0], tx[2] - tx[0], ty[2] - ty[0]) > 0;
+}
+
+// The first choice of sides among the candidates (bit k of cand[a]: side k for site a) that
+// gives a ball touching the segments within their spans.
+inline bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const unsigned cand[3], Ball& out,
+                       const Span* spans = nullptr) {
   for (int i = 0; i < 12; ++i) {
     if (!(cand[0] >> i & 1u)) continue;
     for (int j = 0; j < 12; ++j) {
@@ -236,7 +264,12 @@ inline bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const u
       for (int k = 0; k < 12; ++k) {
         if (!(cand[2] >> k & 1u)) continue;
         const int side[3] = {i, j, k};
-        if (ball_on_sides(x, y, side, out)) return true;
+        if (!ball_on_sides(x, y, side, out)) continue;
+        if (spans && !(touches_within(out, i, spans[0]) && touches_within(out, j, spans[1]) &&
+                       touches_within(out, k, spans[2])))
+          continue;
+        if (spans && turns_left(x, y, side, out)) continue;
+        return true;
       }
     }
   }
@@ -274,17 +307,19 @@ inline bool ball_through(const std::int64_t x[3], const std::int64_t y[3], Ball&
 }
 
 // The ball touching three sites of which some are segments (fixed[a]: the side of its line
-// the segment's arc faces, or -1 for a point; x, y: the point, or the segment's point0).
-inline bool ball_touching(const std::int64_t x[3], const std::int64_t y[3], const int fixed[3], Ball& out) {
+// the segment's arc faces, or -1 for a point; x, y: the point, or the segment's point0), at a
+// point of each segment (spans).
+inline bool ball_touching(const std::int64_t x[3], const std::int64_t y[3], const int fixed[3], const Span spans[3],
+                          Ball& out) {
   unsigned cand[3] = {0, 0, 0};
   for (int a = 0; a < 3; ++a)
     if (fixed[a] >= 0) cand[a] = 1u << fixed[a];
   const unsigned lines[3] = {cand[0], cand[1], cand[2]};
   if (!square_vertex_sides(x, y, fixed, cand)) return false;
-  if (ball_among(x, y, cand, out)) return true;
+  if (ball_among(x, y, cand, out, spans)) return true;
   unsigned all[3];
   for (int a = 0; a < 3; ++a) all[a] = fixed[a] >= 0 ? lines[a] : 0xffu;
-  return ball_among(x, y, all, out);
+  return ball_among(x, y, all, out, spans);
 }
 
 inline int orientation128(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by) {
@@ -362,11 +397,14 @@ struct Predicates {
       return arc_nearer(a.x(), a.y(), b.x(), b.y(), p.x(), p.y()) > 0;
     }
 
-    // t of a segment's arc (its line's) at p's height, the sweep at p.x.
+    // t of a segment's arc (its line's) at p's height, the sweep at p.x; negative where p is on
+    // the other side of the line than the arc (as Boost's signed distance): that arc is never
+    // met there.
     template <typename Point>
     static Ratio segment_arc(const Site& s, const Point& p) {
       if (s.x0() == s.x1()) return Ratio(Eps(std::int64_t(p.x()) - s.x0()), Eps(2));
-      return Ratio(std::llabs(std::int64_t(p.y()) - s.y0()));
+      const std::int64_t dy = std::int64_t(p.y()) - s.y0();
+      return Ratio(s.x1() > s.x0() ? -dy : dy);  // the arc is on the right of point0 -> point1
     }
 
     enum { kLess = -1, kUndefined = 0, kMore = 1 };
@@ -494,12 +532,17 @@ struct Predicates {
       }
       std::int64_t x[3], y[3];
       int fixed[3];
+      Span spans[3];
       for (int a = 0; a < 3; ++a) {
-        x[a] = s[a]->x0(), y[a] = s[a]->y0();
-        fixed[a] = s[a]->is_segment() ? segment_side(*s[a]) : -1;
+        const Site& t = *s[a];
+        x[a] = t.x0(), y[a] = t.y0();
+        fixed[a] = t.is_segment() ? segment_side(t) : -1;
+        if (t.is_segment())
+          spans[a] = t.y0() == t.y1() ? Span{std::min<std::int64_t>(t.x0(), t.x1()), std::max<std::int64_t>(t.x0(), t.x1())}
+                                      : Span{std::min<std::int64_t>(t.y0(), t.y1()), std::max<std::int64_t>(t.y0(), t.y1())};
       }
       Ball b;
-      if (segments == 0 ? !ball_through(x, y, b) : !ball_touching(x, y, fixed, b)) return false;
+      if (segments == 0 ? !ball_through(x, y, b) : !ball_touching(x, y, fixed, spans, b)) return false;
       const Eps one_eps = Eps::of(1, 1);
       c = Circle(Ratio(b.cx, b.den), Ratio(b.cy, b.den), Ratio(b.cx * one_eps + b.r, b.den * one_eps));
       // Boost's last test: a vertical segment's arc ends at its endpoints' heights.
