@@ -1,12 +1,16 @@
 // The sweep-line builder against Boost.Polygon's Euclidean construct_voronoi and the
 // subdivision builder, on the same point sites, one thread each, in one run.
 //
-//   build/bench_sweep [runs=3] [max_points=1000000]
+//   build/bench_sweep [runs=3] [max_points=1000000]      generated point sets
+//   build/bench_sweep runs NAME FILE [NAME FILE ...]       layers (bench/bench_sweep_layers.py)
 //
 // Prints one markdown row an input: the best of `runs` timings of each (alternating), the
 // ratios sweep / Boost and subdivision / sweep, and whether the two L-inf builders gave the
-// same number of pieces. Point sites only: that is what the sweep takes so far.
+// same number of pieces. A layer is merged first; Boost gets its merged edges as segments,
+// ours the same edges and their vertices as sites. FILE: one ring a line, "o" (an outer ring)
+// or "h" (a hole of the last outer ring) and its x y pairs in DBU.
 #include <algorithm>
+#include <boost/polygon/segment_data.hpp>
 #include <boost/polygon/voronoi.hpp>
 #include <chrono>
 #include <cmath>
@@ -62,10 +66,15 @@ std::vector<Point> wire_corners(std::size_t n, std::uint64_t seed) {
   return p;
 }
 
-void row(const std::string& name, const std::vector<Point>& pts, int runs) {
+void row(const std::string& name, const Sites& s, int runs) {
   std::vector<boost::polygon::point_data<int>> bp;
-  for (const Point& q : pts) bp.push_back({int(q.x), int(q.y)});
-  const Sites s = sites_of_plain(pts, {});
+  std::vector<boost::polygon::segment_data<int>> bs;
+  std::size_t n = 0;
+  for (const Site& t : s.sites) {
+    if (t.is_point()) ++n;
+    if (t.is_point() && t.ring < 0) bp.push_back({int(t.a.x), int(t.a.y)});
+    if (!t.is_point()) bs.push_back({{int(t.a.x), int(t.a.y)}, {int(t.b.x), int(t.b.y)}});
+  }
   const Box clip = clip_box(s);
   BuildOptions one;
   one.threads = 1;
@@ -74,29 +83,58 @@ void row(const std::string& name, const std::vector<Point>& pts, int runs) {
   for (int r = 0; r < runs; ++r) {
     tb = std::min(tb, seconds([&] {
       boost::polygon::voronoi_diagram<double> vd;
-      boost::polygon::construct_voronoi(bp.begin(), bp.end(), &vd);
+      boost::polygon::construct_voronoi(bp.begin(), bp.end(), bs.begin(), bs.end(), &vd);
     }));
     ts = std::min(ts, seconds([&] { ns = sweep_pieces(s, clip).size(); }));
     tsub = std::min(tsub, seconds([&] { nsub = build_pieces(s, clip, one).size(); }));
   }
-  std::printf("| %s | %zu | %.3f s | %.3f s | %.3f s | %.2f | %.2f | %s |\n", name.c_str(), pts.size(), tb, ts, tsub,
+  std::printf("| %s | %zu / %zu | %.3f s | %.3f s | %.3f s | %.2f | %.2f | %s |\n", name.c_str(), n, bs.size(), tb, ts, tsub,
               ts / tb, tsub / ts, ns == nsub ? "yes" : "NO");
   std::fflush(stdout);
+}
+
+std::vector<Polygon> read_polygons(const char* path) {
+  std::vector<Polygon> out;
+  std::FILE* f = std::fopen(path, "r");
+  if (!f) {
+    std::fprintf(stderr, "cannot read %s\n", path);
+    std::exit(2);
+  }
+  char kind;
+  while (std::fscanf(f, " %c", &kind) == 1) {
+    Ring ring;
+    long long x, y;
+    int c;
+    while ((c = std::fgetc(f)) != EOF && c != '\n') {
+      std::ungetc(c, f);
+      if (std::fscanf(f, "%lld %lld", &x, &y) != 2) break;
+      ring.push_back({x, y});
+    }
+    if (kind == 'o') out.push_back({ring, {}});
+    else if (!out.empty()) out.back().holes.push_back(ring);
+  }
+  std::fclose(f);
+  return out;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   const int runs = argc > 1 ? std::atoi(argv[1]) : 3;
+  std::printf("| input | points / segments | Boost.Polygon L2, 1 thread | sweep, 1 thread | subdivision, 1 thread | "
+              "sweep / Boost | subdivision / sweep | same pieces |\n|---|---|---|---|---|---|---|---|\n");
+  if (argc > 3) {
+    for (int i = 2; i + 1 < argc; i += 2)
+      row(argv[i], sites_of_polygons(merge_polygons(read_polygons(argv[i + 1]))), runs);
+    return 0;
+  }
   const std::size_t most = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1000000;
-  std::printf("| input | points | Boost.Polygon L2, 1 thread | sweep, 1 thread | subdivision, 1 thread | sweep / Boost | "
-              "subdivision / sweep | same pieces |\n|---|---|---|---|---|---|---|---|\n");
   for (std::size_t n : {std::size_t(10000), std::size_t(100000), std::size_t(1000000)}) {
     if (n > most) break;
-    row("random, 2^20 square", random_points(n, 1 << 20, 1), runs);
+    row("random points, 2^20 square", sites_of_plain(random_points(n, 1 << 20, 1), {}), runs);
   }
-  if (most >= 100000) row("random on a 400 x 400 grid (ties)", random_points(100000, 400, 2), runs);
-  if (most >= 100000) row("wire corners", wire_corners(100000, 3), runs);
-  if (most >= 1000000) row("wire corners", wire_corners(1000000, 3), runs);
+  if (most >= 100000) row("random points on a 400 x 400 grid (ties)", sites_of_plain(random_points(100000, 400, 2), {}), runs);
+  if (most >= 100000) row("wire corners as points", sites_of_plain(wire_corners(100000, 3), {}), runs);
+  if (most >= 1000000) row("wire corners as points", sites_of_plain(wire_corners(1000000, 3), {}), runs);
   return 0;
 }

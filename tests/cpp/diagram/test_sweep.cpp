@@ -130,6 +130,20 @@ TEST(Sweep, ManhattanLayoutsAsTheSubdivision) {
   EXPECT_EQ(failed, 0);
 }
 
+TEST(Sweep, ManhattanBlocksAsTheSubdivisionAndTheChecker) {
+  // Blocks of many small layouts (a few thousand sites): long beach lines, many coincident
+  // events on the grid; and the independent checker on the sweep's diagram.
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    Diagram d;
+    d.sites = sites_of_polygons(merge_polygons(linf::testing::block(seed, linf::testing::Style::Rectilinear, 6, 5)));
+    ASSERT_EQ(difference(d.sites), "") << "seed " << seed;
+    d.clip = clip_box(d.sites);
+    d.pieces = sweep_pieces(d.sites, d.clip);
+    const CheckReport r = check_diagram(d);
+    ASSERT_TRUE(r.ok()) << "seed " << seed << ": " << (r.messages.empty() ? "" : r.messages[0]);
+  }
+}
+
 TEST(Sweep, Stress) {
   const char* env = std::getenv("SWEEP_STRESS");
   // On request (SWEEP_STRESS=N sets): up to 100 points, ranges 5 to 2^29.
