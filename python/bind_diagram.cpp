@@ -18,7 +18,7 @@ void bind_diagram(py::module_& m) {
       "voronoi_polygons",
       [](const py::object& polys, bool check, int pairs, int threads, double tile, const std::string& csv,
          double dbu, bool with_pieces, const std::string& gds, int gds_layer, const std::string& gds_cell,
-         const py::object& tiles, const py::object& progress) {
+         const py::object& tiles, const py::object& progress, const std::string& builder) {
         const LayerInput in(polys);
         const TileRunner runner = runner_of(tiles);
         const StreamOutputs files = outputs_of(csv, dbu, gds, gds_layer, gds_cell);
@@ -26,21 +26,21 @@ void bind_diagram(py::module_& m) {
           WholeResult w;
           {
             py::gil_scoped_release unlocked;
-            w = voronoi_whole(in.flat(), options(check, pairs, threads, tile, progress), files);
+            w = voronoi_whole(in.flat(), options(check, pairs, threads, tile, progress, builder), files);
           }
           return stage_dict(w, !gds.empty());
         }
         StreamResult r;
         {
           py::gil_scoped_release unlocked;
-          r = stream_voronoi(in.flat(), options(check, pairs, threads, tile, progress), files, runner);
+          r = stream_voronoi(in.flat(), options(check, pairs, threads, tile, progress, builder), files, runner);
         }
         return stage_dict(r, !gds.empty());
       },
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("pieces") = true,
       py::arg("gds") = "", py::arg("gds_layer") = 0, py::arg("gds_cell") = "VORONOI", py::arg("tiles") = py::none(),
-      py::arg("progress") = py::none(),
+      py::arg("progress") = py::none(), py::arg("builder") = "subdivision",
       "Diagram of polygons [(outer, [holes])], rings as [(x, y)] in integer DBU, or the same flat:\n"
       "(points, rings), points array('q') x0, y0, x1, y1, ..., rings array('q') of point counts, each outer\n"
       "ring followed by its holes with negative counts. Shapes are merged first.\n"
@@ -60,7 +60,9 @@ void bind_diagram(py::module_& m) {
       "order the jobs were taken. Same pieces, same files.\n"
       "progress: a callable(stage, done, total): the stages' names as they start (done 0), and inside the\n"
       "builder's and the merge's stages how many parts are done of how many, at most ten times a second, from\n"
-      "the core's threads (it is given the GIL); what it raises is reported and dropped.");
+      "the core's threads (it is given the GIL); what it raises is reported and dropped.\n"
+      "builder: 'subdivision' (default) or 'sweep', the sweep-line builder where it takes the layer (points and\n"
+      "axis-parallel edges so far; one thread, no tiles); else the subdivision. Same pieces.");
 
   m.def(
       "build_tile_job",

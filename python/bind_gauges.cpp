@@ -66,7 +66,7 @@ void bind_gauges(py::module_& m) {
       [](const py::object& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
          bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu, const std::string& gds,
          int gds_layer, const std::string& gds_cell, const std::string& gauges_csv, const std::string& columns,
-         const py::object& tiles, const py::object& progress) {
+         const py::object& tiles, const py::object& progress, const std::string& builder) {
         const LayerInput in(polys);
         const TileRunner runner = runner_of(tiles);
         StreamOutputs files = outputs_of(csv, dbu, gds, gds_layer, gds_cell);
@@ -85,7 +85,7 @@ void bind_gauges(py::module_& m) {
           WholeResult w;
           {
             py::gil_scoped_release unlocked;
-            w = voronoi_whole(in.flat(), options(check, pairs, threads, tile, progress), files);
+            w = voronoi_whole(in.flat(), options(check, pairs, threads, tile, progress, builder), files);
           }
           d = stage_dict(w, !gds.empty());
           py::gil_scoped_release unlocked;
@@ -101,7 +101,7 @@ void bind_gauges(py::module_& m) {
           StreamResult r;
           {
             py::gil_scoped_release unlocked;
-            r = stream_voronoi(in.flat(), options(check, pairs, threads, tile, progress), files, runner);
+            r = stream_voronoi(in.flat(), options(check, pairs, threads, tile, progress, builder), files, runner);
             stage("placing the gauges");
             const auto t0 = std::chrono::steady_clock::now();
             g = gauges_of(r.diagram.sites, std::move(r.stretches), o);
@@ -128,7 +128,7 @@ void bind_gauges(py::module_& m) {
       py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false, py::arg("paths") = false,
       py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("gds") = "", py::arg("gds_layer") = 0,
       py::arg("gds_cell") = "VORONOI", py::arg("gauges_csv") = "", py::arg("columns") = "",
-      py::arg("tiles") = py::none(), py::arg("progress") = py::none(),
+      py::arg("tiles") = py::none(), py::arg("progress") = py::none(), py::arg("builder") = "subdivision",
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
       "Returns {'gauges': {'count': n, 'reals': bytes, 'ints': bytes, 'paths': [[(x, y)]] if paths=True else None},\n"
       "'stretches': n, ...}: the gauges in rank order as columns, float64 x10 per gauge (x1, y1, x2, y2, cx, cy, cd,\n"
@@ -142,7 +142,7 @@ void bind_gauges(py::module_& m) {
       "columns: write the two column blocks into this file (reals for every gauge, then ints) instead of bytes:\n"
       "'gauges' is then {'count', 'file', 'reals': None, 'ints': None, 'paths'}, for the caller to map.\n"
       "tiles: as in voronoi_polygons (with pieces=False). progress: as in voronoi_polygons, then 'placing the\n"
-      "gauges' and 'writing gauges.csv'.");
+      "gauges' and 'writing gauges.csv'. builder: as in voronoi_polygons.");
 
   m.def(
       "gauge_contexts",

@@ -71,8 +71,12 @@ ProgressFn progress_of(const py::object& fn) {
   };
 }
 
-DiagramOptions options(bool check, int pairs, int threads, double tile, const py::object& progress) {
+DiagramOptions options(bool check, int pairs, int threads, double tile, const py::object& progress,
+                       const std::string& builder) {
+  if (builder != "subdivision" && builder != "sweep")
+    throw py::value_error("builder must be 'subdivision' or 'sweep', not '" + builder + "'");
   DiagramOptions o;
+  o.sweep = builder == "sweep";
   o.progress = progress_of(progress);
   o.check = check;
   o.checker.crossing_pairs = pairs;

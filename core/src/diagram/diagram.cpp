@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "linf/diagram/classify.hpp"
+#include "linf/diagram/sweep.hpp"
 #include "linf/geometry/sites.hpp"
 
 namespace linf {
@@ -22,7 +23,12 @@ Result finish(Sites sites, const DiagramOptions& opt, double seconds_merge) {
   d.clip = clip_box(d.sites);
   auto t0 = std::chrono::steady_clock::now();
   BuildStats st;
-  d.pieces = build_pieces(d.sites, d.clip, opt.build, &st, opt.progress);
+  if (opt.sweep && sweep_handles(d.sites)) {
+    if (opt.progress) opt.progress("building the diagram", 0, 0);
+    d.pieces = sweep_pieces(d.sites, d.clip);
+  } else {
+    d.pieces = build_pieces(d.sites, d.clip, opt.build, &st, opt.progress);
+  }
   d.tiles = st.tiles, d.tile_tasks = st.tasks, d.largest_tile_sites = st.largest_tile_sites;
   for (Piece& p : d.pieces) p.kind = classify(d.sites, p);
   d.seconds_build = since(t0);

@@ -16,6 +16,7 @@
 
 #include "linf/diagram/builder.hpp"
 #include "linf/diagram/classify.hpp"
+#include "linf/diagram/sweep.hpp"
 #include "linf/io/csv.hpp"
 #include "linf/geometry/sites.hpp"
 #include "util/progress_meter.hpp"
@@ -151,7 +152,7 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
   std::vector<double> clear;  // a sample of clearances: where the checker draws its pairs
   BuildStats st;
   t0 = std::chrono::steady_clock::now();
-  build_parts(d.sites, d.clip, opt.build, &st, [&](std::vector<Piece>& part, const Box& frame) {
+  auto take = [&](std::vector<Piece>& part, const Box& frame) {
     for (Piece& p : part) p.kind = classify(d.sites, p);
     for (std::size_t i = 0; i < part.size(); i += 1 + part.size() / 64) clear.push_back(part[i].d1);
     if (stretches) {
@@ -160,7 +161,14 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
       t_stretches += since(t);
     }
     runs.add(part);
-  }, tiles, opt.progress);
+  };
+  if (opt.sweep && !tiles && sweep_handles(d.sites)) {  // one part: the whole layer
+    if (opt.progress) opt.progress("building the diagram", 0, 0);
+    std::vector<Piece> all = sweep_pieces(d.sites, d.clip);
+    take(all, d.clip);
+  } else {
+    build_parts(d.sites, d.clip, opt.build, &st, take, tiles, opt.progress);
+  }
   d.seconds_build = since(t0) - t_stretches;
   d.tiles = st.tiles, d.tile_tasks = st.tasks, d.largest_tile_sites = st.largest_tile_sites;
 
