@@ -113,6 +113,7 @@ py::dict summary_dict(const Diagram& d, const CheckReport& c) {
   tiles["tasks"] = d.tile_tasks;
   tiles["largest_tile_sites"] = d.largest_tile_sites;
   out["tiles"] = tiles;
+  out["builder"] = d.swept ? "sweep" : "subdivision";
   py::dict t;
   t["merge"] = d.seconds_merge;
   t["build"] = d.seconds_build;

@@ -26,6 +26,7 @@ Result finish(Sites sites, const DiagramOptions& opt, double seconds_merge) {
   if (opt.sweep && sweep_handles(d.sites)) {
     if (opt.progress) opt.progress("building the diagram", 0, 0);
     d.pieces = sweep_pieces(d.sites, d.clip);
+    d.swept = true;
   } else {
     d.pieces = build_pieces(d.sites, d.clip, opt.build, &st, opt.progress);
   }

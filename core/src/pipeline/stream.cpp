@@ -165,6 +165,7 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
   if (opt.sweep && !tiles && sweep_handles(d.sites)) {  // one part: the whole layer
     if (opt.progress) opt.progress("building the diagram", 0, 0);
     std::vector<Piece> all = sweep_pieces(d.sites, d.clip);
+    d.swept = true;
     take(all, d.clip);
   } else {
     build_parts(d.sites, d.clip, opt.build, &st, take, tiles, opt.progress);

@@ -40,6 +40,7 @@ struct Diagram {
   Box clip;                 // rays are clipped to this box
   int attempts = 0;         // constructions tried until one passed the checker
   std::size_t tiles = 0, tile_tasks = 0, largest_tile_sites = 0;  // how the builder cut the work
+  bool swept = false;       // built by the sweep-line builder (sweep.hpp), not the subdivision
   double seconds_merge = 0, seconds_build = 0, seconds_extract = 0, seconds_check = 0, seconds_csv = 0;
 };
 
