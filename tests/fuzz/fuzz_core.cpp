@@ -6,7 +6,9 @@
 // far-field pass) varied. Findings, each aborting the run:
 //   the diagram: the checker rejects it (DiagramError), unless a known fault that is not fixed
 //     yet explains it (known.hpp: counted and reported when the run ends); or a piece ends where
-//     its owners still own either side beyond it (ends_check.hpp: a piece missing);
+//     its owners still own either side beyond it (ends_check.hpp: a piece missing); or, on a
+//     layer of axis-parallel edges, the sweep-line builder's pieces differ from it
+//     (sweep_check.hpp);
 //   the farthest diagram of crossing segments, points and convex polygons taken from the same
 //     shapes: a vertex off its weight, or a face, edge or region whose owners are not the
 //     farthest sites by brute force, or the root not the least weight (farthest_check.hpp);
@@ -30,6 +32,8 @@
 #include "linf/diagram/diagram.hpp"
 #include "linf/farthest/farthest.hpp"
 #include "plain.hpp"
+#include "sweep_check.hpp"
+#include "linf/diagram/sweep.hpp"
 
 using namespace linf;
 using namespace linf::fuzz;
@@ -79,6 +83,18 @@ void ends(const Result& r) {
   if (!e.failure.empty()) fail("the diagram's piece ends", e.failure.c_str());
 }
 
+// Where the sweep-line builder takes the layer (points and axis-parallel edges), its pieces
+// must be the subdivision's.
+void sweep(const Layout& L, DiagramOptions opt, const Result& subdivision) {
+  if (!sweep_handles(subdivision.diagram.sites)) return;
+  opt.sweep = true;
+  opt.check = false;
+  const Result r = voronoi_of_polygons(L.polygons, opt);
+  if (!r.diagram.swept) fail("the sweep", "did not build a layer it takes");
+  const std::string d = same_pieces(subdivision.diagram.pieces, r.diagram.pieces, 1e-9);
+  if (!d.empty()) fail("the sweep against the subdivision", d.c_str());
+}
+
 void diagram_stage(const Layout& L) {
   const DiagramOptions opt = options_of(L);
   std::vector<Point> all;
@@ -92,8 +108,11 @@ void diagram_stage(const Layout& L) {
       for (const Ring& h : p.holes) add(h);
     }
     const bool valid = std::all_of(all.begin(), all.end(), in_range);
-    expect("the diagram of polygons", valid, known::of_diagram(all, edges, opt.build.axis_ties),
-           [&] { ends(voronoi_of_polygons(L.polygons, opt)); });
+    expect("the diagram of polygons", valid, known::of_diagram(all, edges, opt.build.axis_ties), [&] {
+      const Result r = voronoi_of_polygons(L.polygons, opt);
+      ends(r);
+      sweep(L, opt, r);
+    });
     return;
   }
   std::vector<Segment> segments;

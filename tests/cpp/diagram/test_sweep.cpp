@@ -17,33 +17,17 @@
 #include "linf/diagram/sweep.hpp"
 #include "linf/geometry/sites.hpp"
 #include "layouts.hpp"
+#include "../fuzz/sweep_check.hpp"
 
 using namespace linf;
 
 namespace {
 
-// The first piece of one builder that the other lacks (same owners, ends within tol either
-// way round), or "".
+// The first piece of one builder that the other lacks (same owners, ends within 10^-6 of the
+// field either way round), or "".
 std::string difference(const Sites& s) {
   const Box clip = clip_box(s);
-  const std::vector<Piece> sub = build_pieces(s, clip), swp = sweep_pieces(s, clip);
-  const double tol = 1e-6 * (1 + clip.x2 - clip.x1);
-  auto near = [&](const Vec2& u, const Vec2& v) { return std::fabs(u.x - v.x) <= tol && std::fabs(u.y - v.y) <= tol; };
-  auto same = [&](const Piece& x, const Piece& y) {
-    return x.a == y.a && x.b == y.b && ((near(x.p, y.p) && near(x.q, y.q)) || (near(x.p, y.q) && near(x.q, y.p)));
-  };
-  auto missing = [&](const std::vector<Piece>& from, const std::vector<Piece>& in, const char* who) -> std::string {
-    for (const Piece& x : from)
-      if (std::none_of(in.begin(), in.end(), [&](const Piece& y) { return same(x, y); })) {
-        char m[300];
-        std::snprintf(m, sizeof m, "only the %s has %d-%d (%.9g,%.9g)-(%.9g,%.9g)", who, x.a, x.b, x.p.x, x.p.y, x.q.x,
-                      x.q.y);
-        return m;
-      }
-    return "";
-  };
-  std::string d = missing(sub, swp, "subdivision");
-  return d.empty() ? missing(swp, sub, "sweep") : d;
+  return linf::fuzz::same_pieces(build_pieces(s, clip), sweep_pieces(s, clip), 1e-6 * (1 + clip.x2 - clip.x1) / (1 + std::max(std::fabs(clip.x1), std::fabs(clip.x2))));
 }
 
 Sites points(const std::vector<Point>& p) { return sites_of_plain(p, {}); }

@@ -1,0 +1,50 @@
+// The sweep-line builder's diagram against the subdivision's: the same pieces, each with the
+// same owners and ends (either way round) within `tol` of the other's. Shared by the tests
+// (tests/cpp/diagram/test_sweep.cpp) and the fuzzer.
+#pragma once
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "linf/geometry/piece.hpp"
+
+namespace linf::fuzz {
+
+// "" if every piece of each side has its match on the other; else the first one that has not.
+inline std::string same_pieces(const std::vector<Piece>& subdivision, const std::vector<Piece>& sweep, double tol) {
+  auto near = [tol](const Vec2& u, const Vec2& v) {
+    return std::fabs(u.x - v.x) <= tol * (1 + std::fabs(u.x)) && std::fabs(u.y - v.y) <= tol * (1 + std::fabs(u.y));
+  };
+  auto same = [&](const Piece& x, const Piece& y) {
+    return (near(x.p, y.p) && near(x.q, y.q)) || (near(x.p, y.q) && near(x.q, y.p));
+  };
+  auto by_pair = [](const std::vector<Piece>& v) {
+    std::map<std::pair<int, int>, std::vector<const Piece*>> m;
+    for (const Piece& p : v) m[{p.a, p.b}].push_back(&p);
+    return m;
+  };
+  const auto a = by_pair(subdivision), b = by_pair(sweep);
+  auto missing = [&](const decltype(a)& from, const decltype(a)& in, const char* who) -> std::string {
+    for (const auto& [pair, pieces] : from) {
+      const auto it = in.find(pair);
+      for (const Piece* x : pieces) {
+        bool found = false;
+        if (it != in.end())
+          for (const Piece* y : it->second) found = found || same(*x, *y);
+        if (found) continue;
+        char m[300];
+        std::snprintf(m, sizeof m, "only the %s has %d-%d (%.9g,%.9g)-(%.9g,%.9g)", who, x->a, x->b, x->p.x, x->p.y,
+                      x->q.x, x->q.y);
+        return m;
+      }
+    }
+    return "";
+  };
+  const std::string d = missing(a, b, "subdivision");
+  return d.empty() ? missing(b, a, "sweep") : d;
+}
+
+}  // namespace linf::fuzz
