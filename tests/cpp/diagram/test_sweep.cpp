@@ -99,9 +99,11 @@ TEST(Sweep, TheCheckerPassesItsDiagrams) {
 }
 
 TEST(Sweep, ManhattanLayoutsAsTheSubdivision) {
-  // Merged rectilinear layouts: every vertex a point site, every edge an axis-parallel segment.
+  // 1,000 merged rectilinear layouts (boxes that overlap, touch along an edge or at a corner,
+  // nest, L shapes, frames with holes): every vertex a point site, every edge an axis-parallel
+  // segment.
   int failed = 0;
-  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+  for (std::uint64_t seed = 1; seed <= 1000; ++seed) {
     const Sites s = sites_of_polygons(merge_polygons(linf::testing::random_layout(seed, linf::testing::Style::Rectilinear, 1 + int(seed % 10))));
     std::string d;
     try {
@@ -112,6 +114,39 @@ TEST(Sweep, ManhattanLayoutsAsTheSubdivision) {
     if (!d.empty() && ++failed <= 5) ADD_FAILURE() << "seed " << seed << ": " << d;
   }
   EXPECT_EQ(failed, 0);
+}
+
+TEST(Sweep, DegenerateManhattanAsTheSubdivision) {
+  // What a grid makes of L-inf: slivers one DBU wide, boxes meeting at a corner, collinear
+  // edges, a checkerboard of unit squares (every ball touches four sites), a staircase (every
+  // corner on one diagonal), and all of it near the +-2^30 limit.
+  auto box = [](Coord x1, Coord y1, Coord x2, Coord y2) { return Polygon{{{x1, y1}, {x2, y1}, {x2, y2}, {x1, y2}}, {}}; };
+  std::vector<std::vector<Polygon>> cases;
+  cases.push_back({box(0, 0, 1, 50), box(3, 0, 4, 50), box(6, 10, 7, 40), box(0, 52, 7, 53)});
+  cases.push_back({box(0, 0, 10, 10), box(10, 10, 20, 20), box(20, 0, 30, 10), box(0, 20, 10, 30)});
+  cases.push_back({box(0, 0, 10, 5), box(15, 0, 25, 5), box(30, 0, 40, 5), box(0, 10, 40, 15)});
+  std::vector<Polygon> board, stairs;
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j)
+      if ((i + j) % 2 == 0) board.push_back(box(2 * i, 2 * j, 2 * i + 1, 2 * j + 1));
+  cases.push_back(board);
+  Ring st{{0, 0}};
+  for (int k = 0; k < 10; ++k) st.push_back({10 * k + 10, 10 * k}), st.push_back({10 * k + 10, 10 * k + 10});
+  st.push_back({0, 100});
+  stairs.push_back({st, {}});
+  cases.push_back(stairs);
+  const std::size_t n = cases.size();
+  for (std::size_t c = 0; c < n; ++c) {  // the same far out: coordinates near 2^30
+    std::vector<Polygon> far = cases[c];
+    for (Polygon& p : far)
+      for (Point& v : p.outer) v.x += (Coord(1) << 30) - 1000, v.y -= (Coord(1) << 30) - 1000;
+    cases.push_back(far);
+  }
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const Sites s = sites_of_polygons(merge_polygons(cases[c]));
+    ASSERT_TRUE(sweep_handles(s)) << "case " << c;
+    ASSERT_EQ(difference(s), "") << "case " << c;
+  }
 }
 
 TEST(Sweep, ManhattanBlocksAsTheSubdivisionAndTheChecker) {
