@@ -3,8 +3,9 @@
 // exactly. O(n log n). Same output as build_pieces: straight pieces with their owners and end
 // clearances, joined per owner pair, clipped to `clip`; kinds are left for the classifier.
 //
-// So far it takes point sites only; sweep_handles says whether it takes a layer's sites.
-// The subdivision builder (build_pieces) stays the default and the oracle it is checked by.
+// It takes points and axis-parallel segments (every Manhattan layer); sweep_handles says
+// whether it takes a layer's sites. One thread, the whole layer at once (no tiles). The
+// subdivision builder (build_pieces) stays the default and the oracle it is checked by.
 #pragma once
 #include <vector>
 
