@@ -4,6 +4,7 @@
 // sites; for each choice the centre solves a 3x3 linear system, exactly.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -12,21 +13,26 @@
 
 namespace linf::sweep {
 
-// The eight sides of N_eps's unit ball: N_eps(u, v) is the largest of alpha u + beta v.
+// The eight sides of N_eps's unit ball, (alpha, beta) as c0 + c1 eps: N_eps(u, v) is the
+// largest of alpha u + beta v. Then a segment's line touched by the ball (N_eps of a point's
+// distance to an axis-parallel line is (1 + eps) times the L-inf one): the ball left of (below,
+// right of, above) it.
+constexpr std::int64_t kAlpha[12][2] = {{1, 1},  {1, 1},   {-1, -1}, {-1, -1},  // x dominant, right; left
+                                        {0, 1},  {0, -1},  {0, 1},   {0, -1},   // y dominant, up; down
+                                        {-1, -1}, {0, 0},  {1, 1},   {0, 0}};   // lines
+constexpr std::int64_t kBeta[12][2] = {{0, 1},  {0, -1},  {0, 1},   {0, -1},
+                                       {1, 1},  {1, 1},   {-1, -1}, {-1, -1},
+                                       {0, 0},  {-1, -1}, {0, 0},   {1, 1}};
 struct Side {
   Eps alpha, beta;
 };
 inline const Side* sides() {
-  static const Side s[12] = {
-      {Eps::of(1, 1), Eps::of(0, 1)},  {Eps::of(1, 1), Eps::of(0, -1)},   // x dominant, right
-      {Eps::of(-1, -1), Eps::of(0, 1)}, {Eps::of(-1, -1), Eps::of(0, -1)},  // x dominant, left
-      {Eps::of(0, 1), Eps::of(1, 1)},  {Eps::of(0, -1), Eps::of(1, 1)},    // y dominant, up
-      {Eps::of(0, 1), Eps::of(-1, -1)}, {Eps::of(0, -1), Eps::of(-1, -1)},  // y dominant, down
-      // A segment's line touched by the ball (N_eps of a point's distance to an axis-parallel
-      // line is (1 + eps) times the L-inf one): the ball left of (below, right of, above) it.
-      {Eps::of(-1, -1), Eps(0)}, {Eps(0), Eps::of(-1, -1)}, {Eps::of(1, 1), Eps(0)}, {Eps(0), Eps::of(1, 1)},
-  };
-  return s;
+  static const auto s = [] {
+    std::array<Side, 12> t;
+    for (int k = 0; k < 12; ++k) t[k] = {Eps::of(kAlpha[k][0], kAlpha[k][1]), Eps::of(kBeta[k][0], kBeta[k][1])};
+    return t;
+  }();
+  return s.data();
 }
 // Side 8 + segment_side(...): the side of an axis-parallel segment's line that its arc (Boost's
 // site event, possibly inverted) lies on: the right of point0 -> point1.
@@ -43,6 +49,11 @@ inline int orientation(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::i
   return v > 0 ? 1 : (v < 0 ? -1 : 0);
 }
 
+inline int orientation128(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by) {
+  const __int128 v = __int128(ax) * by - __int128(ay) * bx;
+  return v > 0 ? 1 : (v < 0 ? -1 : 0);
+}
+
 // The ball of N_eps through three points, if there is one: centre, radius and the sweep
 // position at which the sweep line touches it. Each point lies on one side of the ball; for
 // each choice of sides the centre solves a 3x3 linear system, and it is the ball only if the
@@ -51,36 +62,81 @@ struct Ball {
   Eps cx, cy, r, den;  // centre (cx, cy) / den, radius r / den; den > 0
 };
 
+// Polynomials in eps of a fixed number of terms N: the sides are linear, so every quantity of
+// the solve below has a known degree, and products unroll with no test of leading zeros.
+template <int N>
+struct Poly {
+  std::int64_t c[N];
+  int sign() const {
+    for (std::int64_t v : c)
+      if (v != 0) return v > 0 ? 1 : -1;
+    return 0;
+  }
+  Eps eps() const {
+    Eps e;
+    for (int i = 0; i < N; ++i) e.c[i] = c[i];
+    return e;
+  }
+};
+template <int N, int M>
+Poly<(N > M ? N : M)> operator+(const Poly<N>& a, const Poly<M>& b) {
+  Poly<(N > M ? N : M)> r{};
+  for (int i = 0; i < N; ++i) r.c[i] += a.c[i];
+  for (int i = 0; i < M; ++i) r.c[i] += b.c[i];
+  return r;
+}
+template <int N>
+Poly<N> operator-(const Poly<N>& a) {
+  Poly<N> r;
+  for (int i = 0; i < N; ++i) r.c[i] = -a.c[i];
+  return r;
+}
+template <int N, int M>
+Poly<(N > M ? N : M)> operator-(const Poly<N>& a, const Poly<M>& b) {
+  return a + -b;
+}
+template <int N, int M>
+Poly<N + M - 1> operator*(const Poly<N>& a, const Poly<M>& b) {
+  Poly<N + M - 1> r{};
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < M; ++j) r.c[i + j] += a.c[i] * b.c[j];
+  return r;
+}
+using Lin = Poly<2>;
+inline Lin alpha_of(int k) { return {{kAlpha[k][0], kAlpha[k][1]}}; }
+inline Lin beta_of(int k) { return {{kBeta[k][0], kBeta[k][1]}}; }
+
 // The ball for sides side[0..2] of the three sites (anchors x, y: a point site, or a point of
 // a segment's line, whose side is one of the line forms 8..11), if each point's side is the
 // outermost at its centre. Rows (alpha, beta, -1) . (cx, cy, r) = alpha x + beta y, by
-// Cramer's rule through the 2x2 minors of the sides (the third column is constant).
+// Cramer's rule through the 2x2 minors of the sides (the third column is constant): d and the
+// centre are quadratic in eps, the radius cubic.
 inline bool ball_on_sides(const std::int64_t x[3], const std::int64_t y[3], const int side[3], Ball& out) {
-  const Side* S = sides();
-  const Side &f1 = S[side[0]], &f2 = S[side[1]], &f3 = S[side[2]];
-  const Eps m12 = f1.alpha * f2.beta - f2.alpha * f1.beta, m13 = f1.alpha * f3.beta - f3.alpha * f1.beta,
-            m23 = f2.alpha * f3.beta - f3.alpha * f2.beta;
-  Eps d = -(m23 - m13 + m12);
-  if (d.sign() == 0) return false;
-  const Eps h1 = f1.alpha * Eps(x[0]) + f1.beta * Eps(y[0]), h2 = f2.alpha * Eps(x[1]) + f2.beta * Eps(y[1]),
-            h3 = f3.alpha * Eps(x[2]) + f3.beta * Eps(y[2]);
-  Eps cx = -(h2 * f3.beta - h3 * f2.beta - h1 * f3.beta + h3 * f1.beta + h1 * f2.beta - h2 * f1.beta);
-  Eps cy = -(f2.alpha * h3 - f3.alpha * h2 - f1.alpha * h3 + f3.alpha * h1 + f1.alpha * h2 - f2.alpha * h1);
-  Eps r = h1 * m23 - h2 * m13 + h3 * m12;
-  if (d.sign() < 0) d = -d, cx = -cx, cy = -cy, r = -r;
+  const Lin a1 = alpha_of(side[0]), b1 = beta_of(side[0]), a2 = alpha_of(side[1]), b2 = beta_of(side[1]),
+            a3 = alpha_of(side[2]), b3 = beta_of(side[2]);
+  const Poly<3> m12 = a1 * b2 - a2 * b1, m13 = a1 * b3 - a3 * b1, m23 = a2 * b3 - a3 * b2;
+  Poly<3> d = m13 - m12 - m23;
+  const int ds = d.sign();
+  if (ds == 0) return false;
+  auto c = [](std::int64_t v) { return Poly<1>{{v}}; };
+  const Lin h1 = a1 * c(x[0]) + b1 * c(y[0]), h2 = a2 * c(x[1]) + b2 * c(y[1]), h3 = a3 * c(x[2]) + b3 * c(y[2]);
+  Poly<3> cx = h1 * (b3 - b2) + h2 * (b1 - b3) + h3 * (b2 - b1);
+  Poly<3> cy = h1 * (a2 - a3) + h2 * (a3 - a1) + h3 * (a1 - a2);
+  Poly<4> r = h1 * m23 - h2 * m13 + h3 * m12;
+  if (ds < 0) d = -d, cx = -cx, cy = -cy, r = -r;
   if (r.sign() < 0) return false;  // radius 0: a corner, where two edges meet their common end
   for (int a = 0; a < 3; ++a) {
     if (side[a] >= 8) continue;  // a line: touched by construction
-    const Eps u = cx - Eps(x[a]) * d, v = cy - Eps(y[a]) * d;
+    const Poly<3> u = cx - c(x[a]) * d, v = cy - c(y[a]) * d;
     for (int k = 0; k < 8; ++k) {
       if (k == side[a]) continue;
       // At eps = 0 a side's form is +-u or +-v: strictly below r there, it is below r.
       const std::int64_t v0 = k < 4 ? (k < 2 ? u.c[0] : -u.c[0]) : (k < 6 ? v.c[0] : -v.c[0]);
       if (v0 < r.c[0]) continue;
-      if ((S[k].alpha * u + S[k].beta * v - r).sign() > 0) return false;
+      if ((alpha_of(k) * u + beta_of(k) * v - r).sign() > 0) return false;
     }
   }
-  out.cx = cx, out.cy = cy, out.r = r, out.den = d;
+  out.cx = cx.eps(), out.cy = cy.eps(), out.r = r.eps(), out.den = d.eps();
   return true;
 }
 
@@ -110,62 +166,69 @@ void squares_through(const std::int64_t x[3], const std::int64_t y[3], F f) {
   }
 }
 
+// The sides of N_eps a point lies on at an L-inf square, from the centre's offset (u, v) and the
+// half side m: both eps sides of each L-inf side the point is on into cand; into pref only the
+// one its minor coordinate picks (side 0, (1 + eps) u + eps v, is outermost where v > 0), or
+// both where that coordinate is 0. At an isolated square pref holds the ball's sides; where the
+// ball's limit lies inside an edge of a continuum of squares the sign may differ, so pref is an
+// order of trial, never a restriction.
+template <typename T>
+void sides_at(T u, T v, T m, unsigned& cand, unsigned& pref) {
+  auto minor = [](T w, unsigned plus, unsigned minus) { return w > 0 ? plus : (w < 0 ? minus : plus | minus); };
+  if (u == m) cand |= 0x03u, pref |= minor(v, 0x01u, 0x02u);
+  if (-u == m) cand |= 0x0cu, pref |= minor(v, 0x04u, 0x08u);
+  if (v == m) cand |= 0x30u, pref |= minor(u, 0x10u, 0x20u);
+  if (-v == m) cand |= 0xc0u, pref |= minor(u, 0x40u, 0x80u);
+}
+
+// The L-inf square (eps = 0) with each of three sites on a given side: rows (a, b, -1) .
+// (cx, cy, r) = h, a side's form (a, b) being +-x or +-y and h = a x + b y its site's anchor.
+// Centre (cx, cy) / d and half side r / d, d > 0; false if the three are dependent. Exact in
+// int64 for coordinates within +-2^30 (|d| <= 6).
+struct Square {
+  std::int64_t cx, cy, r, d;
+};
+inline bool square_on(const std::int64_t a[3], const std::int64_t b[3], const std::int64_t h[3], Square& q) {
+  const std::int64_t m12 = a[0] * b[1] - a[1] * b[0], m13 = a[0] * b[2] - a[2] * b[0], m23 = a[1] * b[2] - a[2] * b[1];
+  q.d = m13 - m12 - m23;
+  if (q.d == 0) return false;
+  q.cx = h[0] * (b[2] - b[1]) + h[1] * (b[0] - b[2]) + h[2] * (b[1] - b[0]);
+  q.cy = h[0] * (a[1] - a[2]) + h[1] * (a[2] - a[0]) + h[2] * (a[0] - a[1]);
+  q.r = h[0] * m23 - h[1] * m13 + h[2] * m12;
+  if (q.d < 0) q.d = -q.d, q.cx = -q.cx, q.cy = -q.cy, q.r = -q.r;
+  return true;
+}
+
 // Every vertex of the set of L-inf squares through the three sites (a point on a side of the
 // square, a segment's line on the side facing it): three independent conditions, each "point
-// a on side s" (up to two a point, at a corner) or a line's (each line's among them), met by a
-// square that holds all the points. The bits of the sides each point lies on at some vertex
-// are or-ed into cand (both eps sides of each L-inf side). In doubled coordinates: exact.
-inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3], const int fixed[3], unsigned cand[3]) {
-  static const int A[12] = {1, -1, 0, 0, 0, 0, 0, 0, -1, 0, 1, 0}, B[12] = {0, 0, 1, -1, 0, 0, 0, 0, 0, -1, 0, 1};
-  int cons[12][2], n = 0, lines = 0;  // (site, L-inf side 0..3 or line form 8..11)
-  for (int a = 0; a < 3; ++a) {
-    if (fixed[a] >= 0) {
-      cons[n][0] = a, cons[n][1] = fixed[a], ++n, ++lines;
-    } else {
-      for (int sd = 0; sd < 4; ++sd) cons[n][0] = a, cons[n][1] = sd, ++n;
-    }
-  }
+// a on side s" (up to two a point, at a corner) or a line's (every line's among them), met by
+// a square that holds all the points. The bits of the sides each point lies on at some vertex
+// are or-ed into cand and pref (sides_at).
+inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3], const int fixed[3], unsigned cand[3],
+                                unsigned pref[3]) {
+  static const std::int64_t kA[4] = {1, -1, 0, 0}, kB[4] = {0, 0, 1, -1};  // u = r, -u = r, v = r, -v = r
+  std::int64_t A[15], B[15], H[15];  // the conditions: the lines' first, then each point's four
+  int n = 0, lines = 0;
+  auto add = [&](int site, std::int64_t a, std::int64_t b) { A[n] = a, B[n] = b, H[n] = a * x[site] + b * y[site], ++n; };
+  for (int s = 0; s < 3; ++s)
+    if (fixed[s] >= 0) add(s, kAlpha[fixed[s]][0], kBeta[fixed[s]][0]), ++lines;
+  for (int s = 0; s < 3; ++s)
+    if (fixed[s] < 0)
+      for (int sd = 0; sd < 4; ++sd) add(s, kA[sd], kB[sd]);
   bool any = false;
-  for (int c1 = 0; c1 < n; ++c1)
-    for (int c2 = c1 + 1; c2 < n; ++c2)
-      for (int c3 = c2 + 1; c3 < n; ++c3) {
-        const int cs[3] = {c1, c2, c3};
-        int with_lines = 0;
-        for (int c : cs) with_lines += cons[c][1] >= 8;
-        if (with_lines != lines) continue;
-        // Rows (A, B, -1) . (cx, cy, r) = A x_a + B y_a.
-        std::int64_t m[3][3], h[3];
-        for (int t = 0; t < 3; ++t) {
-          const int a = cons[cs[t]][0], sd = cons[cs[t]][1];
-          m[t][0] = A[sd], m[t][1] = B[sd], m[t][2] = -1, h[t] = A[sd] * x[a] + B[sd] * y[a];
-        }
-        auto det = [](const std::int64_t q[3][3]) {
-          return q[0][0] * (q[1][1] * q[2][2] - q[1][2] * q[2][1]) - q[0][1] * (q[1][0] * q[2][2] - q[1][2] * q[2][0]) +
-                 q[0][2] * (q[1][0] * q[2][1] - q[1][1] * q[2][0]);
-        };
-        const std::int64_t d = det(m);
-        if (d == 0) continue;
-        std::int64_t sol[3];  // doubled: 2 * numerator / d is an integer, d being +-1 or +-2
-        for (int c = 0; c < 3; ++c) {
-          std::int64_t q[3][3];
-          for (int t = 0; t < 3; ++t)
-            for (int u = 0; u < 3; ++u) q[t][u] = u == c ? h[t] : m[t][u];
-          sol[c] = 2 * det(q) / d;
-        }
-        if (sol[2] < 0) continue;
+  for (int c1 = 0; c1 < (lines >= 1 ? 1 : n); ++c1)
+    for (int c2 = c1 + 1; c2 < (lines >= 2 ? 2 : n); ++c2)
+      for (int c3 = c2 + 1; c3 < (lines >= 3 ? 3 : n); ++c3) {
+        const std::int64_t a[3] = {A[c1], A[c2], A[c3]}, b[3] = {B[c1], B[c2], B[c3]}, h[3] = {H[c1], H[c2], H[c3]};
+        Square q;
+        if (!square_on(a, b, h, q) || q.r < 0) continue;
         bool ok = true;
-        for (int a = 0; a < 3 && ok; ++a)
-          if (fixed[a] < 0) ok = std::max(std::llabs(sol[0] - 2 * x[a]), std::llabs(sol[1] - 2 * y[a])) == sol[2];
+        for (int s = 0; s < 3 && ok; ++s)
+          if (fixed[s] < 0) ok = std::max(std::llabs(q.cx - x[s] * q.d), std::llabs(q.cy - y[s] * q.d)) == q.r;
         if (!ok) continue;
         any = true;
-        for (int a = 0; a < 3; ++a) {
-          if (fixed[a] >= 0) continue;
-          const std::int64_t u = sol[0] - 2 * x[a], v = sol[1] - 2 * y[a];
-          if (u == sol[2]) cand[a] |= 0x03u;
-          if (-u == sol[2]) cand[a] |= 0x0cu;
-          if (v == sol[2]) cand[a] |= 0x30u;
-          if (-v == sol[2]) cand[a] |= 0xc0u;
-        }
+        for (int s = 0; s < 3; ++s)
+          if (fixed[s] < 0) sides_at<std::int64_t>(q.cx - x[s] * q.d, q.cy - y[s] * q.d, q.r, cand[s], pref[s]);
       }
   return any;
 }
@@ -180,6 +243,35 @@ inline bool touches_within(const Ball& b, int side, const Span& sp) {
   if (sp.hi < sp.lo) return true;
   const Eps& c = (side == kLineBelowIt || side == kLineAboveIt) ? b.cx : b.cy;
   return (c - Eps(sp.lo) * b.den).sign() >= 0 && (Eps(sp.hi) * b.den - c).sign() >= 0;
+}
+
+// A filter ahead of the exact solve, on the constant terms alone (the L-inf square the ball
+// tends to): where that system is regular its solution is the constant term of the exact one,
+// so what fails strictly there fails for every small eps: a negative radius, a side outside
+// the square, with spans a centre beyond a segment's span or a left turn (touches_within,
+// turns_left). Most choices end here, in a few int64 operations instead of cubic polynomials.
+// False only if the exact tests would be.
+inline bool limit_may_hold(const std::int64_t x[3], const std::int64_t y[3], const int side[3], const Span* spans) {
+  std::int64_t al[3], be[3], h[3];
+  for (int s = 0; s < 3; ++s) al[s] = kAlpha[side[s]][0], be[s] = kBeta[side[s]][0], h[s] = al[s] * x[s] + be[s] * y[s];
+  Square q;
+  if (!square_on(al, be, h, q)) return true;  // singular at eps = 0: only the higher orders decide
+  const std::int64_t cx = q.cx, cy = q.cy, r = q.r, d = q.d;
+  if (r < 0) return false;
+  std::int64_t tx[3], ty[3];  // where the square touches each site, times d
+  for (int a = 0; a < 3; ++a) {
+    tx[a] = x[a] * d, ty[a] = y[a] * d;
+    if (side[a] < 8) {
+      const std::int64_t u = cx - tx[a], v = cy - ty[a];
+      if (std::max(std::max(u, -u), std::max(v, -v)) > r) return false;
+      continue;
+    }
+    const bool horizontal_line = side[a] == kLineBelowIt || side[a] == kLineAboveIt;
+    std::int64_t& along = horizontal_line ? tx[a] : ty[a];
+    along = horizontal_line ? cx : cy;
+    if (spans && spans[a].lo <= spans[a].hi && (along < spans[a].lo * d || along > spans[a].hi * d)) return false;
+  }
+  return !spans || orientation128(tx[1] - tx[0], ty[1] - ty[0], tx[2] - tx[0], ty[2] - ty[0]) <= 0;
 }
 
 // Whether the ball meets the three sites counter-clockwise (bottom arc, middle, top): where
@@ -198,17 +290,20 @@ inline bool turns_left(const std::int64_t x[3], const std::int64_t y[3], const i
 }
 
 // The first choice of sides among the candidates (bit k of cand[a]: side k for site a) that
-// gives a ball touching the segments within their spans.
+// gives a ball touching the segments within their spans; the choices within pref first.
 inline bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const unsigned cand[3], Ball& out,
-                       const Span* spans = nullptr) {
+                       const Span* spans = nullptr, const unsigned* pref = nullptr) {
+  for (int pass = pref ? 0 : 1; pass < 2; ++pass)
   for (int i = 0; i < 12; ++i) {
     if (!(cand[0] >> i & 1u)) continue;
     for (int j = 0; j < 12; ++j) {
       if (!(cand[1] >> j & 1u)) continue;
       for (int k = 0; k < 12; ++k) {
         if (!(cand[2] >> k & 1u)) continue;
+        const bool preferred = pref && (pref[0] >> i & pref[1] >> j & pref[2] >> k & 1u);
+        if (preferred != (pass == 0)) continue;
         const int side[3] = {i, j, k};
-        if (!ball_on_sides(x, y, side, out)) continue;
+        if (!limit_may_hold(x, y, side, spans) || !ball_on_sides(x, y, side, out)) continue;
         if (spans && !(touches_within(out, i, spans[0]) && touches_within(out, j, spans[1]) &&
                        touches_within(out, k, spans[2])))
           continue;
@@ -228,23 +323,20 @@ inline bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const u
 // coordinate can change sign along an edge) are the candidates. The squares squares_through
 // gives are most often enough; else all the vertices; every choice of sides is the last resort.
 inline bool ball_through(const std::int64_t x[3], const std::int64_t y[3], Ball& out) {
-  unsigned cand[3] = {0, 0, 0};
+  unsigned cand[3] = {0, 0, 0}, pref[3] = {0, 0, 0};
   bool any = false;
   squares_through(x, y, [&](double cx, double cy, double) {
     any = true;
     for (int a = 0; a < 3; ++a) {
-      const double u = cx - double(x[a]), v = cy - double(y[a]), m = std::max(std::fabs(u), std::fabs(v));
-      if (u == m) cand[a] |= 0x03u;
-      if (-u == m) cand[a] |= 0x0cu;
-      if (v == m) cand[a] |= 0x30u;
-      if (-v == m) cand[a] |= 0xc0u;
+      const double u = cx - double(x[a]), v = cy - double(y[a]);
+      sides_at(u, v, std::max(std::fabs(u), std::fabs(v)), cand[a], pref[a]);
     }
   });
   if (!any) return false;
-  if (ball_among(x, y, cand, out)) return true;
+  if (ball_among(x, y, cand, out, nullptr, pref)) return true;
   const unsigned first[3] = {cand[0], cand[1], cand[2]};
   const int none[3] = {-1, -1, -1};
-  square_vertex_sides(x, y, none, cand);
+  square_vertex_sides(x, y, none, cand, pref);
   if ((cand[0] != first[0] || cand[1] != first[1] || cand[2] != first[2]) && ball_among(x, y, cand, out)) return true;
   const unsigned all[3] = {0xffu, 0xffu, 0xffu};
   return ball_among(x, y, all, out);
@@ -259,16 +351,12 @@ inline bool ball_touching(const std::int64_t x[3], const std::int64_t y[3], cons
   for (int a = 0; a < 3; ++a)
     if (fixed[a] >= 0) cand[a] = 1u << fixed[a];
   const unsigned lines[3] = {cand[0], cand[1], cand[2]};
-  if (!square_vertex_sides(x, y, fixed, cand)) return false;
-  if (ball_among(x, y, cand, out, spans)) return true;
+  unsigned pref[3] = {lines[0], lines[1], lines[2]};
+  if (!square_vertex_sides(x, y, fixed, cand, pref)) return false;
+  if (ball_among(x, y, cand, out, spans, pref)) return true;
   unsigned all[3];
   for (int a = 0; a < 3; ++a) all[a] = fixed[a] >= 0 ? lines[a] : 0xffu;
   return ball_among(x, y, all, out, spans);
-}
-
-inline int orientation128(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by) {
-  const __int128 v = __int128(ax) * by - __int128(ay) * bx;
-  return v > 0 ? 1 : (v < 0 ? -1 : 0);
 }
 
 }  // namespace linf::sweep
