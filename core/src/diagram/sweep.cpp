@@ -127,6 +127,7 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
                        std::fabs(clip.y1) + std::fabs(clip.y2) + 1;
   std::vector<Piece> out;
   struct Span {
+    std::uint64_t pair;  // (a, b) of its pieces, the sort key
     std::size_t first, last;
   };
   std::vector<Span> spans;  // each edge's pieces in `out`
@@ -171,19 +172,17 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
       cuts[n++] = to;
       for (int i = 0; i + 1 < n; ++i) emit(b.point(cuts[i]), b.point(cuts[i + 1]), h.site, g.site);
     }
-    if (out.size() > first) spans.push_back({first, out.size()});
+    if (out.size() > first)
+      spans.push_back({std::uint64_t(std::uint32_t(out[first].a)) << 32 | std::uint32_t(out[first].b), first, out.size()});
   }
   // In join_order, as build_pieces leaves them: the edges sorted by owner pair (a pair has one
   // edge, so nothing is joined unless two edges share a pair), each edge's few pieces sorted.
-  std::sort(spans.begin(), spans.end(), [&](const Span& x, const Span& y) {
-    return std::tie(out[x.first].a, out[x.first].b) < std::tie(out[y.first].a, out[y.first].b);
-  });
+  std::sort(spans.begin(), spans.end(), [](const Span& x, const Span& y) { return x.pair < y.pair; });
   std::vector<Piece> joined, run;
   joined.reserve(out.size());
   for (std::size_t i = 0; i < spans.size();) {
     std::size_t j = i + 1;
-    const Piece& head = out[spans[i].first];
-    while (j < spans.size() && out[spans[j].first].a == head.a && out[spans[j].first].b == head.b) ++j;
+    while (j < spans.size() && spans[j].pair == spans[i].pair) ++j;
     run.clear();
     for (std::size_t k = i; k < j; ++k) run.insert(run.end(), out.begin() + spans[k].first, out.begin() + spans[k].last);
     std::sort(run.begin(), run.end(), join_order);

@@ -106,6 +106,17 @@ using Lin = Poly<2>;
 inline Lin alpha_of(int k) { return {{kAlpha[k][0], kAlpha[k][1]}}; }
 inline Lin beta_of(int k) { return {{kBeta[k][0], kBeta[k][1]}}; }
 
+// alpha_i beta_j - alpha_j beta_i, the 2x2 minors of two sides, from a table.
+inline const Poly<3>& minor_of(int i, int j) {
+  static const auto m = [] {
+    std::array<Poly<3>, 144> t{};
+    for (int a = 0; a < 12; ++a)
+      for (int b = 0; b < 12; ++b) t[a * 12 + b] = alpha_of(a) * beta_of(b) - alpha_of(b) * beta_of(a);
+    return t;
+  }();
+  return m[i * 12 + j];
+}
+
 // The ball for sides side[0..2] of the three sites (anchors x, y: a point site, or a point of
 // a segment's line, whose side is one of the line forms 8..11), if each point's side is the
 // outermost at its centre. Rows (alpha, beta, -1) . (cx, cy, r) = alpha x + beta y, by
@@ -114,7 +125,7 @@ inline Lin beta_of(int k) { return {{kBeta[k][0], kBeta[k][1]}}; }
 inline bool ball_on_sides(const std::int64_t x[3], const std::int64_t y[3], const int side[3], Ball& out) {
   const Lin a1 = alpha_of(side[0]), b1 = beta_of(side[0]), a2 = alpha_of(side[1]), b2 = beta_of(side[1]),
             a3 = alpha_of(side[2]), b3 = beta_of(side[2]);
-  const Poly<3> m12 = a1 * b2 - a2 * b1, m13 = a1 * b3 - a3 * b1, m23 = a2 * b3 - a3 * b2;
+  const Poly<3>&m12 = minor_of(side[0], side[1]), &m13 = minor_of(side[0], side[2]), &m23 = minor_of(side[1], side[2]);
   Poly<3> d = m13 - m12 - m23;
   const int ds = d.sign();
   if (ds == 0) return false;

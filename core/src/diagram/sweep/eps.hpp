@@ -84,6 +84,11 @@ struct Ratio {
 inline int compare(const Ratio& a, const Ratio& b) {
   const __int128 l0 = __int128(a.num.c[0]) * b.den.c[0], r0 = __int128(b.num.c[0]) * a.den.c[0];
   if (l0 != r0) return l0 < r0 ? -1 : 1;
+  if (a.den.c == b.den.c) {  // ties on the grid: often one denominator (or the same event)
+    for (int k = 1; k < kTerms; ++k)
+      if (a.num.c[k] != b.num.c[k]) return a.num.c[k] < b.num.c[k] ? -1 : 1;
+    return 0;
+  }
   for (int k = 1; k < 2 * kTerms - 1; ++k) {
     __int128 v = 0;
     for (int i = std::max(0, k - kTerms + 1); i <= std::min(k, kTerms - 1); ++i)
