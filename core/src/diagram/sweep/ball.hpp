@@ -253,7 +253,10 @@ struct Span {
 inline bool touches_within(const Ball& b, int side, const Span& sp) {
   if (sp.hi < sp.lo) return true;
   const Eps& c = (side == kLineBelowIt || side == kLineAboveIt) ? b.cx : b.cy;
-  return (c - Eps(sp.lo) * b.den).sign() >= 0 && (Eps(sp.hi) * b.den - c).sign() >= 0;
+  // The constant terms decide unless they tie.
+  const std::int64_t lo0 = c.c[0] - sp.lo * b.den.c[0], hi0 = sp.hi * b.den.c[0] - c.c[0];
+  if (lo0 != 0 && hi0 != 0) return lo0 > 0 && hi0 > 0;
+  return (c - sp.lo * b.den).sign() >= 0 && (sp.hi * b.den - c).sign() >= 0;
 }
 
 // A filter ahead of the exact solve, on the constant terms alone (the L-inf square the ball
@@ -290,12 +293,19 @@ inline bool limit_may_hold(const std::int64_t x[3], const std::int64_t y[3], con
 // event whose middle arc vanishes meets them clockwise (as the three points of Boost's point
 // case must turn); touches that coincide (a corner, an edge at its own end) decide nothing.
 inline bool turns_left(const std::int64_t x[3], const std::int64_t y[3], const int side[3], const Ball& b) {
+  std::int64_t lx[3], ly[3];  // the constant terms first: they decide unless they tie
+  for (int a = 0; a < 3; ++a) {
+    lx[a] = side[a] == kLineBelowIt || side[a] == kLineAboveIt ? b.cx.c[0] : x[a] * b.den.c[0];
+    ly[a] = side[a] == kLineLeftOfIt || side[a] == kLineRightOfIt ? b.cy.c[0] : y[a] * b.den.c[0];
+  }
+  const int turn = orientation128(lx[1] - lx[0], ly[1] - ly[0], lx[2] - lx[0], ly[2] - ly[0]);
+  if (turn != 0) return turn > 0;
   Eps tx[3], ty[3];  // times den
   for (int a = 0; a < 3; ++a) {
     const bool horizontal_line = side[a] == kLineBelowIt || side[a] == kLineAboveIt;
     const bool vertical_line = side[a] == kLineLeftOfIt || side[a] == kLineRightOfIt;
-    tx[a] = horizontal_line ? b.cx : Eps(x[a]) * b.den;
-    ty[a] = vertical_line ? b.cy : Eps(y[a]) * b.den;
+    tx[a] = horizontal_line ? b.cx : x[a] * b.den;
+    ty[a] = vertical_line ? b.cy : y[a] * b.den;
   }
   return sign_of_cross(tx[1] - tx[0], ty[1] - ty[0], tx[2] - tx[0], ty[2] - ty[0]) > 0;
 }
@@ -304,24 +314,21 @@ inline bool turns_left(const std::int64_t x[3], const std::int64_t y[3], const i
 // gives a ball touching the segments within their spans; the choices within pref first.
 inline bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const unsigned cand[3], Ball& out,
                        const Span* spans = nullptr, const unsigned* pref = nullptr) {
-  for (int pass = pref ? 0 : 1; pass < 2; ++pass)
-  for (int i = 0; i < 12; ++i) {
-    if (!(cand[0] >> i & 1u)) continue;
-    for (int j = 0; j < 12; ++j) {
-      if (!(cand[1] >> j & 1u)) continue;
-      for (int k = 0; k < 12; ++k) {
-        if (!(cand[2] >> k & 1u)) continue;
-        const bool preferred = pref && (pref[0] >> i & pref[1] >> j & pref[2] >> k & 1u);
-        if (preferred != (pass == 0)) continue;
-        const int side[3] = {i, j, k};
-        if (!limit_may_hold(x, y, side, spans) || !ball_on_sides(x, y, side, out)) continue;
-        if (spans && !(touches_within(out, i, spans[0]) && touches_within(out, j, spans[1]) &&
-                       touches_within(out, k, spans[2])))
-          continue;
-        if (spans && turns_left(x, y, side, out)) continue;
-        return true;
-      }
-    }
+  for (int pass = pref ? 0 : 1; pass < 2; ++pass) {
+    const unsigned* bits = pass == 0 ? pref : cand;
+    for (unsigned mi = bits[0]; mi; mi &= mi - 1)
+      for (unsigned mj = bits[1]; mj; mj &= mj - 1)
+        for (unsigned mk = bits[2]; mk; mk &= mk - 1) {
+          const int i = __builtin_ctz(mi), j = __builtin_ctz(mj), k = __builtin_ctz(mk);
+          if (pass == 1 && pref && (pref[0] >> i & pref[1] >> j & pref[2] >> k & 1u)) continue;  // tried
+          const int side[3] = {i, j, k};
+          if (!limit_may_hold(x, y, side, spans) || !ball_on_sides(x, y, side, out)) continue;
+          if (spans && !(touches_within(out, i, spans[0]) && touches_within(out, j, spans[1]) &&
+                         touches_within(out, k, spans[2])))
+            continue;
+          if (spans && turns_left(x, y, side, out)) continue;
+          return true;
+        }
   }
   return false;
 }

@@ -59,6 +59,11 @@ struct Eps {
     }
     return r;
   }
+  friend Eps operator*(std::int64_t k, const Eps& a) {
+    Eps r;
+    for (int i = 0; i < kTerms; ++i) r.c[i] = k * a.c[i];
+    return r;
+  }
   // The value at eps = 0 (what a coordinate converges to).
   double limit() const { return double(c[0]); }
 };

@@ -46,7 +46,7 @@ inline bool arc_distance(std::int64_t sx, std::int64_t sy, std::int64_t px, std:
   for (int k = 0; k < 8; ++k) {
     const Side& f = sides()[k];
     if (k == 2 || k == 3) continue;
-    const Ratio r(f.alpha * Eps(dx) + f.beta * Eps(dy), one_eps + f.alpha);
+    const Ratio r(dx * f.alpha + dy * f.beta, one_eps + f.alpha);
     if (!any || compare(r, t) > 0) t = r, any = true;
   }
   return true;
