@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <tuple>
 
+#include "far_field.hpp"
 #include "subdivision.hpp"
 #include "tiles.hpp"
 #include "util/progress_meter.hpp"
@@ -87,9 +88,9 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
   BuildStats st;
   // Two passes. Beyond the sites' bounding box lies the far field, where large groups of
   // sites tie in L-inf and boxes stay crowded (most of the work in one pass over the clip box).
-  // Only sites that own a point of the inner box's border can own a point outside it: the
-  // segment from such a point to its nearest site point crosses the border inside the same
-  // region. So the inner box is built with every site, the far field with those owners only.
+  // Only sites that are L-inf nearest (tied or not) at a point of the inner box's border can
+  // own a point outside it (far_field.hpp). So the inner box is built with every site, the far
+  // field with those sites only.
   // The margin is off the integer and half-integer grid, so that no piece runs along the
   // inner box's border, and dyadic (5/16), so that halving boxes stays exact.
   const double x1 = double(ox1 - origin.x), y1 = double(oy1 - origin.y), x2 = double(ox2 - origin.x),
@@ -106,6 +107,7 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
     return;
   }
   std::vector<int> border;
+  std::vector<BorderMark> marks;
   const double eps = 1e-9 * std::max({1.0, std::fabs(inner.x1), std::fabs(inner.x2), std::fabs(inner.y1),
                                       std::fabs(inner.y2)});
   auto on_border = [&](const Vec2& v) {
@@ -113,14 +115,20 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
            std::fabs(v.y - inner.y2) <= eps;
   };
   const PartSink inner_sink = [&](std::vector<Piece>& part, const Box& frame) {
-    for (const Piece& p : part)
+    for (const Piece& p : part) {
+      if (on_border(p.p)) marks.push_back({p.p, p.d1});
+      if (on_border(p.q)) marks.push_back({p.q, p.d2});
       if (on_border(p.p) || on_border(p.q)) border.push_back(p.a), border.push_back(p.b);
+    }
     to_layout(part, origin);
     sink(part, shifted(frame, double(origin.x), double(origin.y)));
   };
   // The tiles here or by the runner (same parts, same order); the far field is built here.
   if (runner) build_tiled_jobs(sites.sites, origin, inner, opt, tau, st, inner_sink, runner, progress);
   else build_tiled(sites.sites, origin, inner, opt, tau, st, inner_sink, progress);
+  // The border's owners, and the sites L-inf-tied with them there (far_field.hpp).
+  std::vector<int> near = far_field_sites(sites.sites, origin, inner, marks);
+  border.insert(border.end(), near.begin(), near.end());
   std::sort(border.begin(), border.end());
   border.erase(std::unique(border.begin(), border.end()), border.end());
   if (border.size() < 2) border = all;  // one site owns the whole border: let the pass decide

@@ -11,7 +11,6 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
-#include <unordered_map>
 
 #include "linf/diagram/builder.hpp"
 #include "diagram/sweep/bisector.hpp"
@@ -32,18 +31,21 @@ struct Topology {
   };
   std::deque<Half> halves;  // twins are 2i and 2i + 1; a deque keeps them in place
   std::vector<Vec2> vertices;
-  // Our site of a site event: a segment's by its insertion index; a point's by its place (Boost
-  // keeps one event of a place where several segments end).
-  std::vector<std::int32_t> segment_site;
-  std::unordered_map<std::uint64_t, std::int32_t> point_site;
-  static std::uint64_t key(std::int64_t x, std::int64_t y) {
-    return (std::uint64_t(std::uint32_t(std::int32_t(x))) << 32) | std::uint32_t(std::int32_t(y));
-  }
+  // Our site of a site event, by its insertion index (Boost's initial_index): a segment's or a
+  // lone point's own; a segment end's the segment's end0 or end1 (Boost keeps one event of a
+  // place where several segments end, any of them). Point sites at one place are one site, the
+  // first (same_place), whichever event stands for them.
+  const SiteList* sites = nullptr;
+  std::vector<std::int32_t> inserted, same_place;
   template <typename Site>
   std::int32_t site_of(const Site& e) const {
-    if (e.is_segment()) return segment_site[e.initial_index()];
-    const auto it = point_site.find(key(e.x0(), e.y0()));
-    return it == point_site.end() ? -1 : it->second;
+    const std::int32_t i = inserted[e.initial_index()];
+    if (e.is_segment()) return i;
+    switch (e.source_category()) {
+      case boost::polygon::SOURCE_CATEGORY_SEGMENT_START_POINT: return same_place[(*sites)[i].end0];
+      case boost::polygon::SOURCE_CATEGORY_SEGMENT_END_POINT: return same_place[(*sites)[i].end1];
+      default: return same_place[i];
+    }
   }
 
   void _reserve(std::size_t) {}
@@ -109,16 +111,36 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
   const SiteList& S = sites.sites;
   boost::polygon::voronoi_builder<std::int32_t, sweep::CoordinateTraits, sweep::Predicates> vb;
   Topology topo;
+  topo.sites = &S;
+  // A point at a segment's end comes with the segment; points at one place are one site.
+  std::vector<char> at_an_end(S.size(), 0);
+  std::vector<std::int32_t> points;
   for (std::size_t i = 0; i < S.size(); ++i) {
     const Site& s = S[i];
     if (s.is_point()) {
-      vb.insert_point(std::int32_t(s.a.x), std::int32_t(s.a.y));
-      topo.point_site.emplace(Topology::key(s.a.x, s.a.y), std::int32_t(i));
-      topo.segment_site.push_back(-1);
+      points.push_back(std::int32_t(i));
     } else {
-      vb.insert_segment(std::int32_t(s.a.x), std::int32_t(s.a.y), std::int32_t(s.b.x), std::int32_t(s.b.y));
-      topo.segment_site.push_back(std::int32_t(i));
+      if (s.end0 < 0 || s.end1 < 0 || !(S[s.end0].a == s.a) || !(S[s.end1].a == s.b))
+        throw std::logic_error("sweep builder: a segment without its end sites");
+      at_an_end[s.end0] = at_an_end[s.end1] = 1;
     }
+  }
+  std::sort(points.begin(), points.end(), [&](std::int32_t u, std::int32_t w) {
+    return std::tie(S[u].a.x, S[u].a.y, u) < std::tie(S[w].a.x, S[w].a.y, w);
+  });
+  topo.same_place.assign(S.size(), -1);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    topo.same_place[points[k]] = k > 0 && S[points[k - 1]].a == S[points[k]].a ? topo.same_place[points[k - 1]] : points[k];
+  for (std::size_t i = 0; i < S.size(); ++i) {
+    const Site& s = S[i];
+    if (!s.is_point()) {
+      vb.insert_segment(std::int32_t(s.a.x), std::int32_t(s.a.y), std::int32_t(s.b.x), std::int32_t(s.b.y));
+    } else if (!at_an_end[i]) {
+      vb.insert_point(std::int32_t(s.a.x), std::int32_t(s.a.y));
+    } else {
+      continue;
+    }
+    topo.inserted.push_back(std::int32_t(i));
   }
   vb.construct(&topo);
 

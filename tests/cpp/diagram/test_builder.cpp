@@ -301,6 +301,20 @@ TEST(Builder, ParallelogramOfSmallSlope) {
   }
 }
 
+// Segments fanning out of (32, 0), found by the fuzzer: left of x = 32 all of them tie in L-inf
+// and the L1 tie-break gives the steep one a wedge of the far field, although at the inner
+// box's border it loses every point to the short vertical one. The far field must take the
+// sites tied at the border, not only its owners (far_field.hpp); the checker failed before.
+TEST(Builder, FarFieldWedgeOfAnL1TieBreak) {
+  const std::vector<Segment> fan{Segment{{32, 0}, {34, 55}}, Segment{{32, 0}, {32, 3}}, Segment{{32, 6}, {34, 177}},
+                                 Segment{{32, 0}, {83, 4}}};
+  for (const bool far_field : {true, false}) {
+    DiagramOptions o;
+    o.build.threads = 1, o.build.far_field_pass = far_field;
+    EXPECT_NO_THROW(voronoi_of_sites({{32, 0}}, fan, o)) << "far field " << far_field;
+  }
+}
+
 // The same with the general L1 tie-break between points and axis-parallel edges.
 TEST(Builder, LShapeAndBoxWithoutAxisTies) {
   const std::vector<Polygon> p{
