@@ -311,16 +311,18 @@ inline bool turns_left(const std::int64_t x[3], const std::int64_t y[3], const i
 }
 
 // The first choice of sides among the candidates (bit k of cand[a]: side k for site a) that
-// gives a ball touching the segments within their spans; the choices within pref first.
+// gives a ball touching the segments within their spans; the choices within pref first, none
+// within skip (already tried).
 inline bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const unsigned cand[3], Ball& out,
-                       const Span* spans = nullptr, const unsigned* pref = nullptr) {
+                       const Span* spans = nullptr, const unsigned* pref = nullptr, const unsigned* skip = nullptr) {
+  auto within = [](const unsigned* m, int i, int j, int k) { return m && (m[0] >> i & m[1] >> j & m[2] >> k & 1u); };
   for (int pass = pref ? 0 : 1; pass < 2; ++pass) {
     const unsigned* bits = pass == 0 ? pref : cand;
     for (unsigned mi = bits[0]; mi; mi &= mi - 1)
       for (unsigned mj = bits[1]; mj; mj &= mj - 1)
         for (unsigned mk = bits[2]; mk; mk &= mk - 1) {
           const int i = __builtin_ctz(mi), j = __builtin_ctz(mj), k = __builtin_ctz(mk);
-          if (pass == 1 && pref && (pref[0] >> i & pref[1] >> j & pref[2] >> k & 1u)) continue;  // tried
+          if ((pass == 1 && within(pref, i, j, k)) || within(skip, i, j, k)) continue;
           const int side[3] = {i, j, k};
           if (!limit_may_hold(x, y, side, spans) || !ball_on_sides(x, y, side, out)) continue;
           if (spans && !(touches_within(out, i, spans[0]) && touches_within(out, j, spans[1]) &&
@@ -333,13 +335,23 @@ inline bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const u
   return false;
 }
 
+// Why the vertices' sides are enough (ball_through, ball_touching). As eps -> 0 the ball
+// tends to an L-inf square on which each point lies on the L-inf side that its N_eps side
+// tends to (sides 0 and 1 to u = r, ...), each line touched from its side. Fix those sides:
+// the squares meeting them are a polyhedron in (cx, cy, r) (the points' equalities and lines,
+// a point's minor coordinate within [-r, r]), and with a point among the sites it holds no
+// line (those bounds pin every direction), so the smallest face holding the limit square has
+// a vertex. There the same equalities hold, each of three independent ones "a point on a
+// side" or a line's (all lines among them: parallel lines are independent): the vertices that
+// square_vertex_sides enumerates. Three lines alone meet in one square or none. So each
+// point's limit side is among the sides it lies on at some vertex, and both eps sides of each
+// are candidates: if no choice among them gives the ball, no choice does.
+
 // The ball of N_eps through three points, with a radius that stays finite as eps -> 0 (one
 // that does not meets the sweep line beyond every finite event: the limit diagram has two
-// parallel rays there, no vertex). Such a ball tends to an L-inf square through the points:
-// a vertex of the set of such squares or a point of an edge of it, where each point lies on
-// sides it lies on at the edge's ends. Those sides (either eps side of each: the minor
-// coordinate can change sign along an edge) are the candidates. The squares squares_through
-// gives are most often enough; else all the vertices; every choice of sides is the last resort.
+// parallel rays there, no vertex). The candidates are the sides at the vertices of the set of
+// L-inf squares through the points (above); the squares squares_through finds (two points on
+// opposite sides) are most often such vertices and cheaper, so they are tried first.
 inline bool ball_through(const std::int64_t x[3], const std::int64_t y[3], Ball& out) {
   unsigned cand[3] = {0, 0, 0}, pref[3] = {0, 0, 0};
   bool any = false;
@@ -355,26 +367,23 @@ inline bool ball_through(const std::int64_t x[3], const std::int64_t y[3], Ball&
   const unsigned first[3] = {cand[0], cand[1], cand[2]};
   const int none[3] = {-1, -1, -1};
   square_vertex_sides(x, y, none, cand, pref);
-  if ((cand[0] != first[0] || cand[1] != first[1] || cand[2] != first[2]) && ball_among(x, y, cand, out)) return true;
-  const unsigned all[3] = {0xffu, 0xffu, 0xffu};
-  return ball_among(x, y, all, out);
+  // The choices already tried are first's: the new ones have a side outside it.
+  const unsigned tried[3] = {first[0], first[1], first[2]};
+  return (cand[0] != first[0] || cand[1] != first[1] || cand[2] != first[2]) &&
+         ball_among(x, y, cand, out, nullptr, nullptr, tried);
 }
 
 // The ball touching three sites of which some are segments (fixed[a]: the side of its line
 // the segment's arc faces, or -1 for a point; x, y: the point, or the segment's point0), at a
-// point of each segment (spans).
+// point of each segment (spans). The candidates: the sides at the vertices (above).
 inline bool ball_touching(const std::int64_t x[3], const std::int64_t y[3], const int fixed[3], const Span spans[3],
                           Ball& out) {
   unsigned cand[3] = {0, 0, 0};
   for (int a = 0; a < 3; ++a)
     if (fixed[a] >= 0) cand[a] = 1u << fixed[a];
-  const unsigned lines[3] = {cand[0], cand[1], cand[2]};
-  unsigned pref[3] = {lines[0], lines[1], lines[2]};
+  unsigned pref[3] = {cand[0], cand[1], cand[2]};
   if (!square_vertex_sides(x, y, fixed, cand, pref)) return false;
-  if (ball_among(x, y, cand, out, spans, pref)) return true;
-  unsigned all[3];
-  for (int a = 0; a < 3; ++a) all[a] = fixed[a] >= 0 ? lines[a] : 0xffu;
-  return ball_among(x, y, all, out, spans);
+  return ball_among(x, y, cand, out, spans, pref);
 }
 
 }  // namespace linf::sweep
