@@ -1,7 +1,7 @@
 // The sweep-line builder against Boost.Polygon's Euclidean construct_voronoi and the
 // subdivision builder, on the same point sites, one thread each, in one run.
 //
-//   build/bench_sweep [runs=3] [max_points=1000000]      generated point sets
+//   build/bench_sweep [runs=3] [max_points=1000000]      generated point sets and wires
 //   build/bench_sweep runs NAME FILE [NAME FILE ...]       layers (bench/bench_sweep_layers.py)
 //
 // Prints one markdown row an input: the best of `runs` timings of each (alternating), the
@@ -66,7 +66,15 @@ std::vector<Point> wire_corners(std::size_t n, std::uint64_t seed) {
   return p;
 }
 
-void row(const std::string& name, const Sites& s, int runs) {
+// The same block of wires as rectangles (a Manhattan layer of n wires: 4n edges).
+std::vector<Polygon> wires(std::size_t n, std::uint64_t seed) {
+  const std::vector<Point> c = wire_corners(4 * n, seed);
+  std::vector<Polygon> out;
+  for (std::size_t i = 0; i + 3 < c.size(); i += 4) out.push_back({{c[i], c[i + 1], c[i + 2], c[i + 3]}, {}});
+  return out;
+}
+
+void row(const std::string& name, const Sites& s, int runs, bool with_subdivision = true) {
   std::vector<boost::polygon::point_data<int>> bp;
   std::vector<boost::polygon::segment_data<int>> bs;
   std::size_t n = 0;
@@ -86,7 +94,12 @@ void row(const std::string& name, const Sites& s, int runs) {
       boost::polygon::construct_voronoi(bp.begin(), bp.end(), bs.begin(), bs.end(), &vd);
     }));
     ts = std::min(ts, seconds([&] { ns = sweep_pieces(s, clip).size(); }));
-    tsub = std::min(tsub, seconds([&] { nsub = build_pieces(s, clip, one).size(); }));
+    if (with_subdivision) tsub = std::min(tsub, seconds([&] { nsub = build_pieces(s, clip, one).size(); }));
+  }
+  if (!with_subdivision) {
+    std::printf("| %s | %zu / %zu | %.3f s | %.3f s | — | %.2f | — | — |\n", name.c_str(), n, bs.size(), tb, ts, ts / tb);
+    std::fflush(stdout);
+    return;
   }
   std::printf("| %s | %zu / %zu | %.3f s | %.3f s | %.3f s | %.2f | %.2f | %s |\n", name.c_str(), n, bs.size(), tb, ts, tsub,
               ts / tb, tsub / ts, ns == nsub ? "yes" : "NO");
@@ -136,5 +149,8 @@ int main(int argc, char** argv) {
   if (most >= 100000) row("random points on a 400 x 400 grid (ties)", sites_of_plain(random_points(100000, 400, 2), {}), runs);
   if (most >= 100000) row("wire corners as points", sites_of_plain(wire_corners(100000, 3), {}), runs);
   if (most >= 1000000) row("wire corners as points", sites_of_plain(wire_corners(1000000, 3), {}), runs);
+  // The wires: 10^5 and 10^6 rectangles (the subdivision only on the smaller: minutes).
+  if (most >= 100000) row("generated wires", sites_of_polygons(merge_polygons(wires(100000, 4))), runs);
+  if (most >= 1000000) row("generated wires", sites_of_polygons(merge_polygons(wires(1000000, 4))), runs, false);
   return 0;
 }

@@ -82,6 +82,7 @@ inline void join_run(const Piece* first, const Piece* last, std::vector<char>& u
         grown = true;
       }
     }
+    orient(cur);
     joined.push_back(cur);
   }
   std::sort(joined.begin(), joined.end(), piece_order);

@@ -160,6 +160,7 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
     pc.p = p, pc.q = q;
     pc.a = std::min(u, w), pc.b = std::max(u, w);
     pc.d1 = linf_distance(p, S[u]), pc.d2 = linf_distance(q, S[u]);
+    orient(pc);
     out.push_back(pc);
   };
   for (std::size_t e = 0; e + 1 < topo.halves.size(); e += 2) {

@@ -22,6 +22,17 @@ def parse_tile(text, dbu):
     return v / dbu
 
 
+def parse_builder(text):
+    """-rd builder=sweep|subdivision: the diagram's construction (the same diagram either way).
+    The sweep-line builder takes Manhattan layers (points and axis-parallel edges) in one thread
+    and one part; on any other layer, or with tiles on a cluster, the subdivision builds it."""
+    if text in (None, "", "subdivision"):
+        return "subdivision"
+    if text == "sweep":
+        return "sweep"
+    raise UsageError("builder must be sweep or subdivision, not %r" % text)
+
+
 def parse_window(text, dbu):
     """'x1,y1,x2,y2' in micrometres -> a box in DBU."""
     try:

@@ -32,6 +32,7 @@ class Diagram:
         self.clip = raw["clip"]
         self.check = raw["check"]
         self.tiles = raw["tiles"]
+        self.builder = raw["builder"]  # which built it: "sweep" or "subdivision"
         self._counts = raw["counts"]
         self.seconds = dict(raw["seconds"], total=seconds_total)
 
@@ -40,9 +41,10 @@ class Diagram:
 
 
 def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=1.0, with_pieces=True,
-            draw_layer=None, draw_cell="VORONOI", threads=0, progress=None):
+            draw_layer=None, draw_cell="VORONOI", threads=0, progress=None, builder="subdivision"):
     """tile: side of the builder's tiles in DBU; 0 one tile, -1 automatic. The diagram is the
     same for every tile size; tiles bound the memory the builder holds at once.
+    builder: "subdivision" or "sweep" (arguments.parse_builder; the same diagram).
     csv_path: the core also writes voronoi.csv there (micrometres, `dbu`).
     draw_layer: a layer number: the core also writes the pieces as GDSII for diagram_output
     (datatypes 200 + kind; one cell named draw_cell).
@@ -54,6 +56,6 @@ def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=
     raw, gds = drawing.drawn_by(
         lambda gds: core.voronoi_polygons(core_input(polygons), check, check_pairs, threads, tile=tile, csv=csv_path or "",
                                           dbu=dbu, pieces=with_pieces, gds=gds, gds_layer=draw_layer or 0,
-                                          gds_cell=draw_cell, progress=progress),
+                                          gds_cell=draw_cell, progress=progress, builder=builder),
         draw_layer is not None)
     return Diagram(raw, time.perf_counter() - t0, csv_path, gds)

@@ -117,6 +117,7 @@ def summary(diagram, dbu, **extra):
         "check": {k: v for k, v in diagram.check.items() if k != "messages"},
         "seconds": diagram.seconds,
         "tiles": diagram.tiles,
+        "builder": diagram.builder,
     }
     s.update(extra)
     return s

@@ -285,7 +285,7 @@ def summary(result, dbu):
         "stretches": result.stretches,
         "typical_width_um": round(result.typical_width * dbu, 9),
         "space_limit_um": round(result.space_limit * dbu, 9) if result.space_limit < float("inf") else None,
-        "diagram": {k: result.diagram[k] for k in ("sites", "pieces", "counts", "tiles")},
+        "diagram": {k: result.diagram[k] for k in ("sites", "pieces", "counts", "tiles", "builder")},
         "check": {k: v for k, v in result.diagram["check"].items() if k != "messages"},
         "seconds": result.seconds,
     }

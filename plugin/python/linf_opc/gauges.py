@@ -149,12 +149,12 @@ def columns_file():
 
 def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, draw_layer=None,
             with_paths=False, tile=-1, csv_path=None, dbu=1.0, gauges_csv=None, draw_cell="VORONOI", threads=0,
-            progress=None):
+            progress=None, builder="subdivision"):
     """draw_layer: a layer number: also keep the diagram, drawable (Gauges.pieces_diagram, a
     diagram.Diagram with its GDSII file, see diagram.compute, also for draw_cell), so that a flow writes both
     without building the diagram twice. with_paths: each gauge's `stretch` is its stretch's
-    path [(x, y)] (else None). tile, csv_path, dbu: as in diagram.compute (the gauges are the
-    same for every tile size). gauges_csv: the core also writes gauges.csv there (micrometres,
+    path [(x, y)] (else None). tile, csv_path, dbu, builder: as in diagram.compute (the gauges
+    are the same for every tile size and builder). gauges_csv: the core also writes gauges.csv there (micrometres,
     `dbu`; Gauges.csv_path). threads: builder workers, 0 one a core. progress: as in
     diagram.compute."""
     from .diagram import Diagram
@@ -165,7 +165,8 @@ def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, d
             lambda gds: core.gauges_polygons(core_input(polygons), check, 2000, threads, tooth_fraction, space_limit_widths,
                                              False, with_paths, tile=tile, csv=csv_path or "", dbu=dbu, gds=gds,
                                              gds_layer=draw_layer or 0, gds_cell=draw_cell,
-                                             gauges_csv=gauges_csv or "", columns=columns, progress=progress),
+                                             gauges_csv=gauges_csv or "", columns=columns, progress=progress,
+                                             builder=builder),
             draw_layer is not None)
     except BaseException:
         drawing.remove(columns)

@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "linf/geometry/site.hpp"
@@ -22,13 +23,19 @@ enum class PieceKind : std::uint8_t {
 const char* kind_name(PieceKind k);
 
 // One straight piece of a Voronoi edge, owned by sites `a` and `b` (indices into Sites::sites);
-// d1/d2: L-inf clearance to the owners at p/q.
+// d1/d2: L-inf clearance to the owners at p/q. A builder's pieces run from the lesser end to
+// the greater (x, then y: orient()), so that every builder writes the same files.
 struct Piece {
   Vec2 p, q;
   double d1 = 0, d2 = 0;
   std::int32_t a = -1, b = -1;
   PieceKind kind = PieceKind::External;
 };
+
+// p the lesser end (x, then y), d1 and d2 with them.
+inline void orient(Piece& c) {
+  if (c.q.x < c.p.x || (c.q.x == c.p.x && c.q.y < c.p.y)) std::swap(c.p, c.q), std::swap(c.d1, c.d2);
+}
 
 struct Box {
   double x1 = 0, y1 = 0, x2 = 0, y2 = 0;
