@@ -3,6 +3,7 @@
 #   klayout -rr tests/klayout/gui_menu.py -rd input=FILE -rd layer=L/D -rd shot=PNG -rd log=TXT
 # Loads the layout, selects the layer, triggers Tools > L-inf Voronoi OPC > Voronoi diagram of
 # current layer through the menu, asserts the diagram layers and undo, saves a screenshot.
+import json
 import os
 import sys
 
@@ -293,6 +294,9 @@ def fill_flow_dialog():
     expect(d.values()["litho"] == "", "no lithography model by default")
     d.litho.currentIndex = d.litho.findText(dialogs.LITHO_LABELS["euv"])
     expect(d.values()["litho"] == "euv", "the lithography model chosen: %r" % d.values()["litho"])
+    expect(d.values()["builder"] == "subdivision", "the subdivision builds the diagram by default")
+    d.builder.currentIndex = d.builder.findText(dialogs.BUILDER_LABELS["sweep"])
+    expect(d.values()["builder"] == "sweep", "the sweep line chosen: %r" % d.values()["builder"])
     state["flow_shot"] = d.grab().save(os.path.splitext(g["shot"])[0] + "_flow_dialog.png")
     d._ok()
     expect(not asked[1:], "valid values into an empty folder: no question")
@@ -328,7 +332,7 @@ def check_remembered():
     d = dialogs.current
     expect(d is not None and d.markers.currentText == g["markers"] and d.sizes.text == "5,6"
            and d.budget.text == "50" and d.verify.text == "20" and d.split.currentIndex == 0
-           and d.out.text == state["flow_out"] and d.values()["litho"] == "euv",
+           and d.out.text == state["flow_out"] and d.values()["litho"] == "euv" and d.values()["builder"] == "sweep",
            "the flow dialog remembers its settings")
     if d is not None:
         d.reject()
@@ -354,6 +358,10 @@ def flow_step():
                                 "calibration.oas", "verification.oas", "calibration_gauges.csv",
                                 "verification_gauges.csv", "split.json", "flow.lyrdb", "summary.json"]),
                "the flow wrote its default files, no more")
+        with open(os.path.join(state["flow_out"], "summary.json")) as f:
+            built = json.load(f)["voronoi"]["builder"]
+        expect(built == "subdivision", "asked for the sweep, the subdivision built the sample (45-degree edges): %s"
+               % built)
         li = ly.find_layer(L, 220)
         expect(li is not None and cell.shapes(li).size() > 0, "the flow drew the windows")
         # The printed contours (euv) of the windows: edges inside the windows' boxes, in the group.

@@ -205,10 +205,15 @@ LITHO_LABELS = {"": "none: the geometric score", "duv193": "duv193: ArF immersio
                 "euv": "euv: 13.5 nm, NA 0.33", "iccad13": "iccad13: the ICCAD 2013 contest's kernels"}
 
 
+# The diagram's construction (-rd builder): the same files either way.
+BUILDER_LABELS = {"subdivision": "subdivision: any layer, tiles on all cores",
+                  "sweep": "sweep line: Manhattan layers, faster, one core"}
+
+
 class FlowDialog(pya.QDialog):
     """The whole flow: layer, markers, window sizes, coverage mode, split mode and its numbers
     (plan budget and verification size, fraction, threshold, seed), output folder, lithography
-    model, Dask scheduler."""
+    model, Dask scheduler, diagram builder."""
 
     def __init__(self, parent, layers, current_layer, settings, title, default_out="", layout_um=0.0):
         super().__init__(parent)
@@ -265,6 +270,11 @@ class FlowDialog(pya.QDialog):
         self.scheduler = pya.QLineEdit(settings.get("scheduler", ""), self)
         self.scheduler.placeholderText = "tcp://HOST:PORT; blank: this computer"
         form.addRow("Dask scheduler (optional)", self.scheduler)
+        self.builder = pya.QComboBox(self)
+        for label in BUILDER_LABELS.values():
+            self.builder.addItem(label)
+        self.builder.currentIndex = 1 if settings.get("builder") == "sweep" else 0
+        form.addRow("Diagram builder", self.builder)
         _buttons(self, form, self._ok)
         self.split.currentIndexChanged = self._split_changed
         self._split_changed(self.split.currentIndex)
@@ -307,7 +317,8 @@ class FlowDialog(pya.QDialog):
                 "verify": self.verify.text.strip(),
                 "fraction": self.fraction.text.strip(), "threshold": self.threshold.text.strip(),
                 "seed": self.seed.text.strip(), "out": self.out.text.strip(),
-                "scheduler": self.scheduler.text.strip(), "litho": (("",) + PRESETS)[max(0, self.litho.currentIndex)]}
+                "scheduler": self.scheduler.text.strip(), "litho": (("",) + PRESETS)[max(0, self.litho.currentIndex)],
+                "builder": list(BUILDER_LABELS)[max(0, self.builder.currentIndex)]}
 
 
 def ask_flow(layers, current_layer, title, default_out="", layout_um=0.0):
