@@ -173,7 +173,10 @@ Gauge measured(GaugeType type, const Vec2& at, double clearance, std::int32_t a,
   Gauge g;
   g.type = type;
   g.at = at;
-  g.cd = 2 * clearance;
+  // On a grid of 2^-20 DBU: builders round a clearance differently in its last bits, and two
+  // equal widths must not become two values (the plan bins the distinct cds). Exact for the
+  // integer and half-integer widths of Manhattan and 45-degree layers.
+  g.cd = std::ldexp(std::nearbyint(std::ldexp(2 * clearance, 20)), -20);
   g.a = a;
   g.b = b;
   return g;

@@ -23,8 +23,8 @@ enum class PieceKind : std::uint8_t {
 const char* kind_name(PieceKind k);
 
 // One straight piece of a Voronoi edge, owned by sites `a` and `b` (indices into Sites::sites);
-// d1/d2: L-inf clearance to the owners at p/q. A builder's pieces run from the lesser end to
-// the greater (x, then y: orient()), so that every builder writes the same files.
+// d1/d2: L-inf clearance to the owners at p/q. A builder's pieces run one way (orient()), so
+// that every builder writes the same files.
 struct Piece {
   Vec2 p, q;
   double d1 = 0, d2 = 0;
@@ -32,9 +32,14 @@ struct Piece {
   PieceKind kind = PieceKind::External;
 };
 
-// p the lesser end (x, then y), d1 and d2 with them.
+// The piece turned, d1 and d2 with its ends, to run along (1, g), g the golden ratio's
+// fraction: no bisector of axis-parallel or 45-degree sites is perpendicular to that, so the
+// rounding of two builders, or of the same input moved far away, never turns a piece (by x,
+// then y, an upright piece would turn with its ends' last bits). Perpendicular: by x, then y.
 inline void orient(Piece& c) {
-  if (c.q.x < c.p.x || (c.q.x == c.p.x && c.q.y < c.p.y)) std::swap(c.p, c.q), std::swap(c.d1, c.d2);
+  const double along = (c.q.x - c.p.x) + 0.6180339887498949 * (c.q.y - c.p.y);
+  if (along < 0 || (along == 0 && (c.q.x < c.p.x || (c.q.x == c.p.x && c.q.y < c.p.y))))
+    std::swap(c.p, c.q), std::swap(c.d1, c.d2);
 }
 
 struct Box {
