@@ -43,15 +43,16 @@ int segment_side(const Site& s) {
   return s.x1() > s.x0() ? kLineBelowIt : kLineAboveIt;
 }
 
-inline int orientation(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by, std::int64_t cx,
-                       std::int64_t cy) {
-  const __int128 v = __int128(bx - ax) * (cy - ay) - __int128(by - ay) * (cx - ax);
-  return v > 0 ? 1 : (v < 0 ? -1 : 0);
-}
-
+// The sign of the cross product of (ax, ay) and (bx, by), in 128 bits.
 inline int orientation128(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by) {
   const __int128 v = __int128(ax) * by - __int128(ay) * bx;
   return v > 0 ? 1 : (v < 0 ? -1 : 0);
+}
+
+// Whether a, b, c turn left (1), right (-1) or lie on a line (0).
+inline int orientation(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by, std::int64_t cx,
+                       std::int64_t cy) {
+  return orientation128(bx - ax, by - ay, cx - ax, cy - ay);
 }
 
 // The ball of N_eps through three points, if there is one: centre, radius and the sweep
@@ -217,7 +218,6 @@ inline bool square_on(const std::int64_t a[3], const std::int64_t b[3], const st
 // are or-ed into cand and pref (sides_at).
 inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3], const int fixed[3], unsigned cand[3],
                                 unsigned pref[3]) {
-  static const std::int64_t kA[4] = {1, -1, 0, 0}, kB[4] = {0, 0, 1, -1};  // u = r, -u = r, v = r, -v = r
   std::int64_t A[15], B[15], H[15];  // the conditions: the lines' first, then each point's four
   int n = 0, lines = 0;
   auto add = [&](int site, std::int64_t a, std::int64_t b) { A[n] = a, B[n] = b, H[n] = a * x[site] + b * y[site], ++n; };
@@ -225,7 +225,7 @@ inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3]
     if (fixed[s] >= 0) add(s, kAlpha[fixed[s]][0], kBeta[fixed[s]][0]), ++lines;
   for (int s = 0; s < 3; ++s)
     if (fixed[s] < 0)
-      for (int sd = 0; sd < 4; ++sd) add(s, kA[sd], kB[sd]);
+      for (int sd = 0; sd < 8; sd += 2) add(s, kAlpha[sd][0], kBeta[sd][0]);  // u = r, -u = r, v = r, -v = r
   bool any = false;
   for (int c1 = 0; c1 < (lines >= 1 ? 1 : n); ++c1)
     for (int c2 = c1 + 1; c2 < (lines >= 2 ? 2 : n); ++c2)
@@ -368,9 +368,8 @@ inline bool ball_through(const std::int64_t x[3], const std::int64_t y[3], Ball&
   const int none[3] = {-1, -1, -1};
   square_vertex_sides(x, y, none, cand, pref);
   // The choices already tried are first's: the new ones have a side outside it.
-  const unsigned tried[3] = {first[0], first[1], first[2]};
   return (cand[0] != first[0] || cand[1] != first[1] || cand[2] != first[2]) &&
-         ball_among(x, y, cand, out, nullptr, nullptr, tried);
+         ball_among(x, y, cand, out, nullptr, nullptr, first);
 }
 
 // The ball touching three sites of which some are segments (fixed[a]: the side of its line
