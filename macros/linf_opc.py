@@ -10,12 +10,29 @@ if os.path.isdir(os.path.join(_repo, "plugin", "python", "linf_opc")):
     sys.path.insert(0, os.path.join(_repo, "build"))
     sys.path.insert(0, os.path.join(_repo, "plugin", "python"))
 
+
+def _starting_out_of_memory(e):
+    """A memory limit that leaves no room even for the package shows as a MemoryError, as a shared
+    object the loader could not map (ImportError), or as CPython's SystemError from an allocation
+    that failed inside an import."""
+    if isinstance(e, (MemoryError, SystemError)):
+        return True
+    text = str(e)
+    return isinstance(e, ImportError) and ("failed to map segment" in text or "Cannot allocate memory" in text)
+
+
+_OUT_OF_MEMORY = ("linf_opc: error: out of memory while starting: the process's memory limit (ulimit -v, "
+                  "RLIMIT_AS) is too small; nothing written\n")
 try:
+    _reserve = bytearray(1 << 20)  # given back before the handler runs: handling needs memory too
     from linf_opc import commands, faults  # noqa: E402
-except MemoryError:  # a memory limit that leaves no room even for the package
-    sys.stderr.write("linf_opc: error: out of memory while starting: the process's memory limit (ulimit -v, "
-                     "RLIMIT_AS) is too small; nothing written\n")
+except Exception as e:  # noqa: BLE001
+    _reserve = None
+    if not _starting_out_of_memory(e):
+        raise
+    sys.stderr.write(_OUT_OF_MEMORY)
     sys.exit(2)
+_reserve = None
 
 # faults.run: a full disk, a read-only folder or a memory limit give one line and exit 2, not a stack.
 sys.exit(faults.run(commands.main, {k: globals().get(k) for k in commands.ARGUMENTS}))
