@@ -3,6 +3,7 @@
 //
 //   build/bench_sweep [runs=3] [max_points=1000000]      generated point sets and wires
 //   build/bench_sweep runs NAME FILE [NAME FILE ...]       layers (bench/bench_sweep_layers.py)
+//   build/bench_sweep tiles runs [NAME FILE ...]           the sweep in tiles, 1 and 2 threads
 //
 // Prints one markdown row an input: the best of `runs` timings of each (alternating), the
 // ratios sweep / Boost and subdivision / sweep, and whether the two L-inf builders gave the
@@ -106,6 +107,37 @@ void row(const std::string& name, const Sites& s, int runs, bool with_subdivisio
   std::fflush(stdout);
 }
 
+// The sweep tile by tile (tiles.hpp) against itself on the whole layer: automatic tiles on
+// one and two threads (the scaling), and the whole layer's single sweep (what tiles cost).
+void tiles_row(const std::string& name, const Sites& s, int runs) {
+  const Box clip = clip_box(s);
+  BuildOptions whole, one, two;
+  whole.sweep = one.sweep = two.sweep = true;
+  whole.tile_size = 0, whole.threads = 1;
+  one.tile_size = two.tile_size = -1;
+  one.threads = 1, two.threads = 2;
+  double tw = 1e30, t1 = 1e30, t2 = 1e30;
+  std::vector<Piece> pw, p1, p2;
+  BuildStats st;
+  for (int r = 0; r < runs; ++r) {
+    tw = std::min(tw, seconds([&] { pw = build_pieces(s, clip, whole); }));
+    t1 = std::min(t1, seconds([&] { p1 = build_pieces(s, clip, one, &st); }));
+    t2 = std::min(t2, seconds([&] { p2 = build_pieces(s, clip, two); }));
+  }
+  auto same = [](const std::vector<Piece>& a, const std::vector<Piece>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (a[i].a != b[i].a || a[i].b != b[i].b || a[i].p.x != b[i].p.x || a[i].p.y != b[i].p.y ||
+          a[i].q.x != b[i].q.x || a[i].q.y != b[i].q.y)
+        return false;
+    return true;
+  };
+  std::printf("| %s | %zu | %zu (largest %zu sites) | %.3f s | %.3f s | %.3f s | %.2f | %.2f | %s |\n", name.c_str(),
+              s.sites.size(), st.tiles, st.largest_tile_sites, tw, t1, t2, t1 / t2, tw / t2,
+              same(pw, p1) && same(pw, p2) ? "yes" : "NO");
+  std::fflush(stdout);
+}
+
 std::vector<Polygon> read_polygons(const char* path) {
   std::vector<Polygon> out;
   std::FILE* f = std::fopen(path, "r");
@@ -133,6 +165,20 @@ std::vector<Polygon> read_polygons(const char* path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "tiles") {  // bench_sweep tiles RUNS [NAME FILE ...]
+    const int runs = argc > 2 ? std::atoi(argv[2]) : 3;
+    std::printf("| input | sites | automatic tiles | whole layer, 1 thread | tiles, 1 thread | tiles, 2 threads | "
+                "scaling 1 -> 2 threads | whole / tiles on 2 threads | same pieces |\n|---|---|---|---|---|---|---|---|---|\n");
+    if (argc > 4) {
+      for (int i = 3; i + 1 < argc; i += 2)
+        tiles_row(argv[i], sites_of_polygons(merge_polygons(read_polygons(argv[i + 1]))), runs);
+      return 0;
+    }
+    if (argc > 3) { tiles_row("generated wires", sites_of_polygons(merge_polygons(wires(std::atoi(argv[3]), 4))), runs); return 0; }
+    tiles_row("generated wires, 10^5", sites_of_polygons(merge_polygons(wires(100000, 4))), runs);
+    tiles_row("generated wires, 10^6", sites_of_polygons(merge_polygons(wires(1000000, 4))), runs);
+    return 0;
+  }
   const int runs = argc > 1 ? std::atoi(argv[1]) : 3;
   std::printf("| input | points / segments | Boost.Polygon L2, 1 thread | sweep, 1 thread | subdivision, 1 thread | "
               "sweep / Boost | subdivision / sweep | same pieces |\n|---|---|---|---|---|---|---|---|\n");

@@ -1,6 +1,7 @@
 # The sweep-line builder on real layers against Boost.Polygon's construction and the
 # subdivision, one thread each, the same merged edges:
-#   klayout -b -r bench/bench_sweep_layers.py [-rd runs=N]
+#   klayout -b -r bench/bench_sweep_layers.py [-rd runs=N] [-rd tiles=1]
+# tiles=1: the sweep in automatic tiles on 1 and 2 threads against its whole-layer sweep.
 # Reads each layer with KLayout, writes its polygons to a temporary file and runs
 # build/bench_sweep on them (docs/benchmarks.md). Layers: the SRAM's 11/0 and ICCAD16
 # testcase 3's 1000/0 from ../shared/data; missing files are reported, not skipped silently.
@@ -22,7 +23,7 @@ LAYERS = [
     ("ICCAD16 testcase 3, 1000/0", os.path.join(data, "iccad16", "testcase3.oas"), "1000/0"),
 ]
 runs = str(max(1, int(globals().get("runs") or 3)))
-args = [os.path.join(repo, "build", "bench_sweep"), runs]
+args = [os.path.join(repo, "build", "bench_sweep")] + (["tiles"] if globals().get("tiles") == "1" else []) + [runs]
 with tempfile.TemporaryDirectory() as tmp:
     for k, (name, path, layer) in enumerate(LAYERS):
         if not os.path.exists(path):

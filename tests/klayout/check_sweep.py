@@ -25,7 +25,8 @@ ly = pya.Layout()
 ly.read(arg("input"))
 top = ly.cell(arg("cell")) if arg("cell", None) else ly.top_cells()[0]
 L, D = layout.parse_layer(arg("layer"))
-polygons = core_input(layout.polygons_of(layout.region_of(top, ly.find_layer(L, D))))
+region = layout.region_of(top, ly.find_layer(L, D))
+polygons = core_input(layout.polygons_of(region))
 
 
 def key(p):
@@ -36,13 +37,34 @@ def key(p):
 pieces = {}
 for builder in ("subdivision", "sweep"):
     t0 = time.perf_counter()
-    r = core.voronoi_polygons(polygons, check=True, threads=1, builder=builder)
+    r = core.voronoi_polygons(polygons, check=True, threads=1, tile=0, builder=builder)
     print("%s: %d pieces, build %.2f s, whole %.2f s, check %s" % (
         builder, len(r["pieces"]), r["seconds"]["build"], time.perf_counter() - t0, r["check"]["ok"]))
     expect(r["check"]["ok"], "the checker passes the %s's diagram" % builder)
     wanted = "subdivision" if arg("fallback", "") else builder
     expect(r["builder"] == wanted, "asked for the %s, the %s built it, not the %s" % (builder, wanted, r["builder"]))
     pieces[builder] = [key(p) for p in r["pieces"]]
+    if builder == "sweep":
+        whole = r["pieces"]
+
+# The sweep tile by tile (tiles.hpp): every tile size and thread count gives the whole layer's
+# sweep, bit for bit (pieces cut at the tiles' frames are joined again).
+side = max(region.bbox().width(), region.bbox().height())
+for tile, threads in ((-1, 2), (side / 5.0, 2), (side / 11.0, 1)):
+    if arg("fallback", ""):
+        break
+    t0 = time.perf_counter()
+    r = core.voronoi_polygons(polygons, check=True, threads=threads, tile=tile, builder="sweep")
+    print("sweep, tile %s, %d threads: %d tiles (largest %d sites), %d pieces, build %.2f s, whole %.2f s" % (
+        "auto" if tile < 0 else "%.0f DBU" % tile, threads, r["tiles"]["tiles"], r["tiles"]["largest_tile_sites"],
+        len(r["pieces"]), r["seconds"]["build"], time.perf_counter() - t0))
+    expect(r["check"]["ok"] and r["builder"] == "sweep", "tile %s: the sweep built it and the checker passes it" % tile)
+    if tile > 0:
+        expect(r["tiles"]["tiles"] > 1, "tile %.0f DBU: more than one tile (%d)" % (tile, r["tiles"]["tiles"]))
+    diff = next((i for i, (u, v) in enumerate(zip(whole, r["pieces"])) if u != v), None)
+    expect(len(r["pieces"]) == len(whole) and diff is None,
+           "tile %s, %d threads: the whole layer's sweep bit for bit (%d pieces against %d; first difference %s)" % (
+               tile, threads, len(r["pieces"]), len(whole), None if diff is None else (whole[diff], r["pieces"][diff])))
 
 a, b = set(pieces["subdivision"]), set(pieces["sweep"])
 expect(len(a) > 0, "the layer has a diagram")

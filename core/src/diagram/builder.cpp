@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "far_field.hpp"
+#include "linf/diagram/sweep.hpp"
 #include "subdivision.hpp"
 #include "tiles.hpp"
 #include "util/progress_meter.hpp"
@@ -97,8 +98,23 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
                y2 = double(oy2 - origin.y);
   const double margin = std::floor(std::max({x2 - x1, y2 - y1, 64.0}) / 64) + 0.3125;
   const Box inner{x1 - margin, y1 - margin, x2 + margin, y2 + margin};
+  const bool sweep = opt.sweep && !runner;
+  if (sweep && opt.tile_size == 0) {  // one tile: the whole layer in one sweep
+    if (progress) progress("building the diagram", 0, 0);
+    std::vector<Piece> part = sweep_part(sites.sites, all, clip);
+    st.tiles = 1, st.largest_tile_sites = all.size();
+    if (stats) *stats = st;
+    sink(part, clip);
+    return;
+  }
   if (!opt.far_field_pass || inner.x1 <= lclip.x1 || inner.y1 <= lclip.y1 || inner.x2 >= lclip.x2 ||
       inner.y2 >= lclip.y2) {
+    if (sweep) {
+      std::vector<Piece> part = sweep_part(sites.sites, all, clip);
+      if (stats) *stats = st;
+      sink(part, clip);
+      return;
+    }
     std::vector<Piece> part =
         run(sites.sites, origin, all, lclip, nullptr, opt, tau, st, progress, "building the diagram");
     if (stats) *stats = st;
@@ -123,8 +139,20 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
     to_layout(part, origin);
     sink(part, shifted(frame, double(origin.x), double(origin.y)));
   };
+  // The sweep's parts come in layout coordinates: its vertices as it computed them.
+  const Vec2 o{double(origin.x), double(origin.y)};
+  const PartSink swept_sink = [&](std::vector<Piece>& part, const Box& frame) {
+    auto at = [&](const Vec2& v) { return on_border({v.x - o.x, v.y - o.y}); };
+    for (const Piece& p : part) {
+      if (at(p.p)) marks.push_back({{p.p.x - o.x, p.p.y - o.y}, p.d1});
+      if (at(p.q)) marks.push_back({{p.q.x - o.x, p.q.y - o.y}, p.d2});
+      if (at(p.p) || at(p.q)) border.push_back(p.a), border.push_back(p.b);
+    }
+    sink(part, frame);
+  };
   // The tiles here or by the runner (same parts, same order); the far field is built here.
   if (runner) build_tiled_jobs(sites.sites, origin, inner, opt, tau, st, inner_sink, runner, progress);
+  else if (sweep) sweep_tiled(sites.sites, origin, inner, opt, tau, st, swept_sink, progress);
   else build_tiled(sites.sites, origin, inner, opt, tau, st, inner_sink, progress);
   // The border's owners, and the sites L-inf-tied with them there (far_field.hpp).
   std::vector<int> near = far_field_sites(sites.sites, origin, inner, marks);
@@ -132,6 +160,19 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
   std::sort(border.begin(), border.end());
   border.erase(std::unique(border.begin(), border.end()), border.end());
   if (border.size() < 2) border = all;  // one site owns the whole border: let the pass decide
+  if (sweep) {
+    for (std::size_t k = 0, n = border.size(); k < n; ++k)  // the sweep takes a segment with its ends
+      if (!sites.sites[border[k]].is_point())
+        border.push_back(sites.sites[border[k]].end0), border.push_back(sites.sites[border[k]].end1);
+    std::sort(border.begin(), border.end());
+    border.erase(std::unique(border.begin(), border.end()), border.end());
+    if (progress) progress("building the far field", 0, 0);
+    const Box hole = shifted(inner, o.x, o.y);
+    std::vector<Piece> far = sweep_part(sites.sites, border, clip, &hole);
+    if (stats) *stats = st;
+    sink(far, hole);
+    return;
+  }
   std::vector<Piece> far =
       run(sites.sites, origin, std::move(border), lclip, &inner, opt, tau, st, progress,
           "building the far field");

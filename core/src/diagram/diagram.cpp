@@ -23,13 +23,9 @@ Result finish(Sites sites, const DiagramOptions& opt, double seconds_merge) {
   d.clip = clip_box(d.sites);
   auto t0 = std::chrono::steady_clock::now();
   BuildStats st;
-  if (opt.sweep && sweep_handles(d.sites)) {
-    if (opt.progress) opt.progress("building the diagram", 0, 0);
-    d.pieces = sweep_pieces(d.sites, d.clip);
-    d.swept = true;
-  } else {
-    d.pieces = build_pieces(d.sites, d.clip, opt.build, &st, opt.progress);
-  }
+  BuildOptions build = opt.build;
+  build.sweep = d.swept = opt.sweep && sweep_handles(d.sites);
+  d.pieces = build_pieces(d.sites, d.clip, build, &st, opt.progress);
   d.tiles = st.tiles, d.tile_tasks = st.tasks, d.largest_tile_sites = st.largest_tile_sites;
   for (Piece& p : d.pieces) p.kind = classify(d.sites, p);
   d.seconds_build = since(t0);

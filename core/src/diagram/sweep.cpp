@@ -71,21 +71,43 @@ struct Topology {
   void _build() {}
 };
 
-// The part of segment p-q inside the box (Liang-Barsky); false if none.
+// The part of segment p-q inside the box (Liang-Barsky); false if none. An end cut at a side
+// lies exactly on it, and on an axis-parallel or diagonal segment (every L-inf bisector piece
+// of Manhattan sites) the other coordinate follows exactly: the same cut of the same line from
+// another of its points (a tile's, the far field's) gives the same bits.
 bool clip_segment(Vec2& p, Vec2& q, const Box& b) {
   double t0 = 0, t1 = 1;
+  int s0 = -1, s1 = -1;  // the sides that cut: 0 x = x1, 1 x = x2, 2 y = y1, 3 y = y2
   const double dx = q.x - p.x, dy = q.y - p.y;
-  auto edge = [&](double num, double den) {  // keep where num + t den >= 0
+  auto edge = [&](double num, double den, int side) {  // keep where num + t den >= 0
     if (den == 0) return num >= 0;
     const double t = -num / den;
-    if (den > 0) t0 = std::max(t0, t);
-    else t1 = std::min(t1, t);
+    if (den > 0 && t > t0) t0 = t, s0 = side;
+    if (den < 0 && t < t1) t1 = t, s1 = side;
     return t0 <= t1;
   };
-  if (!edge(p.x - b.x1, dx) || !edge(b.x2 - p.x, -dx) || !edge(p.y - b.y1, dy) || !edge(b.y2 - p.y, -dy)) return false;
-  const Vec2 a{p.x + t0 * dx, p.y + t0 * dy}, c{p.x + t1 * dx, p.y + t1 * dy};
+  if (!edge(p.x - b.x1, dx, 0) || !edge(b.x2 - p.x, -dx, 1) || !edge(p.y - b.y1, dy, 2) || !edge(b.y2 - p.y, -dy, 3))
+    return false;
+  const bool exact = dx == 0 || dy == 0 || std::fabs(dx) == std::fabs(dy);
+  auto at = [&](double t, int side) -> Vec2 {
+    if (side < 0) return {p.x + t * dx, p.y + t * dy};
+    const double line = side == 0 ? b.x1 : side == 1 ? b.x2 : side == 2 ? b.y1 : b.y2;
+    if (!exact) return side < 2 ? Vec2{line, p.y + t * dy} : Vec2{p.x + t * dx, line};
+    if (side < 2) return {line, dy == 0 ? p.y : p.y + (line - p.x) * (dy / dx)};  // dy / dx is +-1
+    return {dx == 0 ? p.x : p.x + (line - p.y) * (dx / dy), line};
+  };
+  const Vec2 a = s0 < 0 ? p : at(t0, s0), c = s1 < 0 ? q : at(t1, s1);
   p = a, q = c;
   return t1 > t0;
+}
+
+// The parts of segment p-q outside the box `hole` (none, one or two), each handed to f.
+template <typename F>
+void outside(const Vec2& p, const Vec2& q, const Box& hole, F&& f) {
+  Vec2 a = p, b = q;
+  if (!clip_segment(a, b, hole)) return f(p, q);
+  if (!(a.x == p.x && a.y == p.y)) f(p, a);
+  if (!(b.x == q.x && b.y == q.y)) f(b, q);
 }
 
 // L-inf distance from v to a site: a point, or an axis-parallel segment (closed).
@@ -105,10 +127,14 @@ bool sweep_handles(const Sites& sites) {
   return true;
 }
 
-std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats* stats) {
-  if (!sweep_handles(sites))
-    throw std::invalid_argument("sweep builder: only points and axis-parallel segments so far");
-  const SiteList& S = sites.sites;
+namespace {
+
+// The diagram of S (ends numbered within S) inside clip and outside *hole (if given): pieces
+// with ids into S, joined, in join_order.
+std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole, SweepStats* stats) {
+  for (const Site& s : S)
+    if (!s.is_point() && s.a.x != s.b.x && s.a.y != s.b.y)
+      throw std::invalid_argument("sweep builder: only points and axis-parallel segments so far");
   boost::polygon::voronoi_builder<std::int32_t, sweep::CoordinateTraits, sweep::Predicates> vb;
   Topology topo;
   topo.sites = &S;
@@ -153,8 +179,7 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
     std::size_t first, last;
   };
   std::vector<Span> spans;  // each edge's pieces in `out`
-  auto emit = [&](Vec2 p, Vec2 q, std::int32_t u, std::int32_t w) {
-    if (!clip_segment(p, q, clip)) return;
+  auto keep = [&](Vec2 p, Vec2 q, std::int32_t u, std::int32_t w) {
     if (p.x == q.x && p.y == q.y) return;
     Piece pc;
     pc.p = p, pc.q = q;
@@ -162,6 +187,11 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
     pc.d1 = linf_distance(p, S[u]), pc.d2 = linf_distance(q, S[u]);
     orient(pc);
     out.push_back(pc);
+  };
+  auto emit = [&](Vec2 p, Vec2 q, std::int32_t u, std::int32_t w) {
+    if (!clip_segment(p, q, clip)) return;
+    if (!hole) return keep(p, q, u, w);
+    outside(p, q, *hole, [&](const Vec2& a, const Vec2& b) { keep(a, b, u, w); });
   };
   for (std::size_t e = 0; e + 1 < topo.halves.size(); e += 2) {
     const Topology::Half &h = topo.halves[e], &g = topo.halves[e + 1];
@@ -215,6 +245,29 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
   }
   if (stats) stats->site_events = S.size(), stats->vertices = topo.vertices.size(), stats->edges = topo.halves.size() / 2;
   return joined;
+}
+
+}  // namespace
+
+std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats* stats) {
+  return sweep_run(sites.sites, clip, nullptr, stats);
+}
+
+std::vector<Piece> sweep_part(const SiteList& sites, const std::vector<int>& ids, const Box& frame, const Box* hole) {
+  auto local = [&](std::int32_t t) -> std::int32_t {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), t);
+    return t >= 0 && it != ids.end() && *it == t ? std::int32_t(it - ids.begin()) : -1;
+  };
+  SiteList own;
+  own.reserve(ids.size());
+  for (int t : ids) {
+    Site s = sites[t];
+    s.end0 = local(s.end0), s.end1 = local(s.end1);  // a point's ring neighbours may be absent
+    own.push_back(s);
+  }
+  std::vector<Piece> part = sweep_run(own, frame, hole, nullptr);
+  for (Piece& p : part) p.a = ids[p.a], p.b = ids[p.b];  // ascending ids: the order stays
+  return part;
 }
 
 }  // namespace linf

@@ -2,14 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
 #include <exception>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <utility>
 
+#include "linf/diagram/sweep.hpp"
 #include "linf/util/paged.hpp"
 #include "tile_jobs.hpp"
 #include "util/progress_meter.hpp"
@@ -186,11 +189,15 @@ class Plan {
   int T_;  // task level
 
  public:
-  Plan(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt, double tau)
+  // sweep: planned for sweep_sites (a finer grid, no local ids), not for gather_tile.
+  Plan(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt, double tau,
+       bool sweep = false)
       : sites_(sites), origin_(origin), root_(root), opt_(opt), tau_(tau), T_(task_level(sites.size())),
         nt(std::size_t(1) << T_), per(side_tasks()), ntiles(nt / per), tasks(grid_boxes(root, T_)),
-        grid_(sites, root, T_ + 1, origin),  // buckets finer than tasks: tighter halos
-        scratch_(worker_count(per * per, opt.threads)) {
+        level_(sweep ? fine_level() : T_ + 1),  // buckets finer than tasks: tighter halos
+        grid_(sites, root, level_, origin),
+        scratch_(worker_count(sweep ? ntiles * ntiles : per * per, opt.threads)) {
+    if (sweep) return;
     local_.resize(sites.size());
     std::fill(local_.begin(), local_.end(), -1);
   }
@@ -210,6 +217,56 @@ class Plan {
     f.x2 = last.x2, f.y2 = last.y2;
     return f;
   }
+  // The tile's sites for the sweep (safe on several threads, each with its own `worker`). A
+  // site that owns a point p of the frame F and does not meet F is an L-inf nearest site, tied
+  // or not, at the point q where the segment from p to the site's nearest point leaves F (as in
+  // far_field.hpp). So the sites meeting F and those meeting the square of radius f(q) about
+  // each border point q (f: the distance to the nearest site) are enough. The border is walked
+  // in steps of length l from sample points c: over a step f <= f(c) + l (f is 1-Lipschitz), so
+  // the sites within f(c) + l of the step are taken. A square there reaches at most l beyond
+  // the nearest site: l = f(c) / 32 (or a 2048th of the frame) keeps that slack small, where a
+  // border far from every site would otherwise take rows of sites behind the nearest. The
+  // next sample's nearest site is among a step's catch.
+  // Every segment's end sites are added (the sweep takes a segment with them). Tighter than
+  // the tasks' halos, which take a task's whole least upper bound of f around it.
+  std::vector<int> sweep_sites(std::size_t tj, std::size_t ti, unsigned worker) {
+    Scratch& sc = scratch_[worker];
+    const Box F = frame(tj, ti);
+    std::vector<int> ids, h;
+    grid_.near(F, 0, h, sc.seen, sc.stamp);
+    ids = h;
+    const double side = std::max(F.x2 - F.x1, F.y2 - F.y1);
+    const double floor_step = std::max(1.0, side / 2048);  // at most 4 x 2048 samples a tile
+    for (int e = 0; e < 4; ++e) {
+      const bool horizontal = e < 2;  // y = y1, y = y2, x = x1, x = x2
+      const double at = e == 0 ? F.y1 : e == 1 ? F.y2 : e == 2 ? F.x1 : F.x2;
+      const double lo = horizontal ? F.x1 : F.y1, hi = horizontal ? F.x2 : F.y2;
+      double f = nearest(horizontal ? Vec2{lo, at} : Vec2{at, lo}, sc, h);
+      if (f == INFINITY) return {};  // no sites
+      for (double u = lo; u < hi;) {
+        const double l = std::min(hi - u, std::max(floor_step, f / 32));
+        const Box step = horizontal ? Box{u, at, u + l, at} : Box{at, u, at, u + l};
+        grid_.near(step, f + l + tau_, h, sc.seen, sc.stamp);  // f(c) + l bounds f over the step
+        ids.insert(ids.end(), h.begin(), h.end());
+        u += l;
+        // The next sample's nearest site is among these: f there is at most f + l.
+        f = distance(horizontal ? Vec2{u, at} : Vec2{at, u}, h);
+      }
+    }
+    const std::size_t n = ids.size();
+    for (std::size_t k = 0; k < n; ++k)
+      if (!sites_[ids[k]].is_point()) ids.push_back(sites_[ids[k]].end0), ids.push_back(sites_[ids[k]].end1);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
+  }
+  // The sweep's grid: about 8 sites a bucket, for sweep_sites' many small queries.
+  int fine_level() const {
+    int level = T_ + 1;
+    while (level < 12 && (std::size_t(1) << (2 * level)) * 8 < sites_.size()) ++level;
+    return level;
+  }
+
   // The tile's sites (global ids, ascending) and each task's halo in local ids (into them).
   std::vector<int> gather_tile(std::size_t tj, std::size_t ti, std::vector<std::vector<int>>& halo) {
     halo.resize(per * per);
@@ -253,6 +310,29 @@ class Plan {
 
   struct Scratch { Paged<std::uint32_t> seen; std::uint32_t stamp = 0; };  // one entry a site
 
+  // The L-inf distance from c to its nearest site (points and axis-parallel segments: their
+  // boxes), INFINITY if there are none. `h` is scratch.
+  double distance(const Vec2& c, const std::vector<int>& among) const {
+    double f = INFINITY;
+    for (int t : among) {
+      const Site u = shifted(sites_[t], origin_);
+      f = std::min(f, std::max({double(std::min(u.a.x, u.b.x)) - c.x, c.x - double(std::max(u.a.x, u.b.x)),
+                                double(std::min(u.a.y, u.b.y)) - c.y, c.y - double(std::max(u.a.y, u.b.y)), 0.0}));
+    }
+    return f;
+  }
+  double nearest(const Vec2& c, Scratch& sc, std::vector<int>& h) const {
+    const double span = std::max(root_.x2 - root_.x1, root_.y2 - root_.y1);
+    const double cell = span / double(std::size_t(1) << level_);
+    for (double r = std::max(1.0, cell / 2);; r *= 2) {
+      grid_.near({c.x, c.y, c.x, c.y}, r, h, sc.seen, sc.stamp);
+      const double f = distance(c, h);
+      if (f <= r) return f;
+      if (r > 4 * span) return INFINITY;
+    }
+  }
+
+  int level_;  // the grid's
   SiteGrid grid_;
   std::vector<Scratch> scratch_;
   Paged<int> local_;  // global id -> id in the current tile
@@ -328,6 +408,69 @@ void build_tiled(const SiteList& sites, const Point& origin, const Box& root, co
     throw;
   }
   add_work(st, ended);
+}
+
+void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt, double tau,
+                 BuildStats& st, const PartSink& sink, const ProgressFn& progress) {
+  Plan plan(sites, origin, root, opt, tau, true);
+  const std::size_t count = plan.ntiles * plan.ntiles;
+  const unsigned nw = worker_count(count, opt.threads);
+  const double ox = double(origin.x), oy = double(origin.y);
+  ProgressMeter meter(progress, "building the diagram", count);
+  // Each worker takes the next tile, gathers its sites and sweeps it; whoever finds the next
+  // tile in order ready hands it and those after it to the sink, one thread at a time. At most
+  // `window` tiles are ahead of the sink: their pieces are what the pass holds at once.
+  const std::size_t window = 2 * std::size_t(nw);
+  struct Slot {
+    bool ready = false;
+    std::size_t sites = 0;
+    Box frame;
+    std::vector<Piece> part;
+  };
+  std::vector<Slot> slots(window);
+  std::mutex m;
+  std::condition_variable cv;
+  std::size_t delivered = 0;
+  bool delivering = false, stop = false;
+  parallel_for(count, opt.threads, [&](unsigned w, std::size_t i) {
+    try {
+      {
+        std::unique_lock<std::mutex> lock(m);
+        cv.wait(lock, [&] { return i < delivered + window || stop; });
+        if (stop) return;
+      }
+      const std::size_t tj = i / plan.ntiles, ti = i % plan.ntiles;
+      const std::vector<int> ids = plan.sweep_sites(tj, ti, w);
+      const Box f = plan.frame(tj, ti);
+      Slot done{true, ids.size(), {f.x1 + ox, f.y1 + oy, f.x2 + ox, f.y2 + oy}, {}};
+      if (ids.size() >= 2) done.part = sweep_part(sites, ids, done.frame);
+      meter.step();
+      std::unique_lock<std::mutex> lock(m);
+      slots[i % window] = std::move(done);
+      if (delivering) return;  // the thread handing tiles over will find it
+      delivering = true;
+      while (delivered < count && slots[delivered % window].ready) {
+        Slot s = std::move(slots[delivered % window]);
+        slots[delivered % window] = Slot{};
+        lock.unlock();
+        if (s.sites >= 2) {  // as build_tiled: a tile of fewer sites has no pieces
+          ++st.tiles;
+          st.tasks += plan.per * plan.per;
+          st.largest_tile_sites = std::max(st.largest_tile_sites, s.sites);
+          sink(s.part, s.frame);
+        }
+        lock.lock();
+        ++delivered;
+        cv.notify_all();
+      }
+      delivering = false;
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(m);
+      stop = true;
+      cv.notify_all();
+      throw;
+    }
+  });
 }
 
 void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt,

@@ -28,4 +28,12 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
                       double tau, BuildStats& st, const PartSink& sink, const TileRunner& runner,
                       const ProgressFn& progress = {});
 
+// The same tiles built by the sweep-line builder (opt.sweep): a tile's sites, the union of its
+// tasks' halos and every segment's end sites, swept at once and cut to the tile's frame; as
+// many tiles swept side by side as there are threads, handed to `sink` one at a time and in
+// order. Pieces and frames in layout coordinates (the frames, dyadic, shift exactly), so the
+// sweep's vertices reach the sink as it computed them.
+void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt, double tau,
+                 BuildStats& st, const PartSink& sink, const ProgressFn& progress = {});
+
 }  // namespace linf::detail

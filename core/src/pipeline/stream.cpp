@@ -162,14 +162,9 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
     }
     runs.add(part);
   };
-  if (opt.sweep && !tiles && sweep_handles(d.sites)) {  // one part: the whole layer
-    if (opt.progress) opt.progress("building the diagram", 0, 0);
-    std::vector<Piece> all = sweep_pieces(d.sites, d.clip);
-    d.swept = true;
-    take(all, d.clip);
-  } else {
-    build_parts(d.sites, d.clip, opt.build, &st, take, tiles, opt.progress);
-  }
+  BuildOptions build = opt.build;
+  build.sweep = d.swept = opt.sweep && !tiles && sweep_handles(d.sites);  // a cluster's tiles: the subdivision
+  build_parts(d.sites, d.clip, build, &st, take, tiles, opt.progress);
   d.seconds_build = since(t0) - t_stretches;
   d.tiles = st.tiles, d.tile_tasks = st.tasks, d.largest_tile_sites = st.largest_tile_sites;
 

@@ -40,6 +40,9 @@ struct BuildOptions {
   double tile_size = 0;       // DBU; > 0: build the sites' box tile by tile, holding one tile's
                               // sites at a time (same pieces for every size; see tiles.hpp);
                               // < 0: automatic, at most 2^15 sites of its own in the fullest tile
+  bool sweep = false;         // build with the sweep-line builder (sweep.hpp): each tile's sites
+                              // swept at once, a tile a thread; only for sites it handles
+                              // (sweep_handles), and not with a TileRunner
 };
 
 struct BuildStats {

@@ -23,8 +23,8 @@ struct DiagramOptions {
   CheckOptions checker;
   ProgressFn progress;        // told of the stages and of the builder's tasks (util/progress.hpp)
   bool sweep = false;         // build with the sweep-line builder where it takes the layer
-                              // (sweep_handles, linf/diagram/sweep.hpp), one thread, no tiles;
-                              // else, and by default, the subdivision
+                              // (sweep_handles, linf/diagram/sweep.hpp), with build's tiles and
+                              // threads; else, and by default, the subdivision
 };
 
 // Thrown when the checker rejects a diagram: a wrong diagram is never handed on silently.

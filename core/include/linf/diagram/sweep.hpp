@@ -4,8 +4,9 @@
 // clearances, joined per owner pair, clipped to `clip`; kinds are left for the classifier.
 //
 // It takes points and axis-parallel segments (every Manhattan layer); sweep_handles says
-// whether it takes a layer's sites. One thread, the whole layer at once (no tiles). The
-// subdivision builder (build_pieces) stays the default and the oracle it is checked by.
+// whether it takes a layer's sites. sweep_pieces builds the whole layer in one thread;
+// build_pieces with BuildOptions::sweep builds it tile by tile with sweep_part, a tile a
+// thread. The subdivision builder stays the default and the oracle it is checked by.
 #pragma once
 #include <vector>
 
@@ -22,5 +23,12 @@ bool sweep_handles(const Sites& sites);
 
 // Throws std::invalid_argument for sites it does not handle.
 std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats* stats = nullptr);
+
+// A part of a diagram, for tiles (tiles.hpp): the diagram of the sites `ids` (ascending, with
+// every segment's end sites) inside `frame` and outside `*hole` if given, with the ids of
+// `sites`. Within the frame it is the whole layer's diagram when every site that can own a
+// point there is among `ids` (a tile's halo).
+std::vector<Piece> sweep_part(const SiteList& sites, const std::vector<int>& ids, const Box& frame,
+                              const Box* hole = nullptr);
 
 }  // namespace linf
