@@ -62,7 +62,8 @@ void bind_diagram(py::module_& m) {
       "builder's and the merge's stages how many parts are done of how many, at most ten times a second, from\n"
       "the core's threads (it is given the GIL); what it raises is reported and dropped.\n"
       "builder: 'subdivision' (default) or 'sweep', the sweep-line builder where it takes the layer (points and\n"
-      "axis-parallel edges so far; one thread, no tiles); else the subdivision. Same pieces.");
+      "axis-parallel edges so far; with `tile` and `threads` as the subdivision; not with `tiles`); else the\n"
+      "subdivision. Same pieces.");
 
   m.def(
       "build_tile_job",

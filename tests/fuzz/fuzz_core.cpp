@@ -8,7 +8,7 @@
 //     yet explains it (known.hpp: counted and reported when the run ends); or a piece ends where
 //     its owners still own either side beyond it (ends_check.hpp: a piece missing); or, on a
 //     layer of axis-parallel edges, the sweep-line builder's pieces differ from it
-//     (sweep_check.hpp);
+//     (sweep_check.hpp), or its pieces in tiles differ from its whole layer's by a bit;
 //   the farthest diagram of crossing segments, points and convex polygons taken from the same
 //     shapes: a vertex off its weight, or a face, edge or region whose owners are not the
 //     farthest sites by brute force, or the root not the least weight (farthest_check.hpp);
@@ -93,6 +93,16 @@ void sweep(const Layout& L, DiagramOptions opt, const Result& subdivision) {
   if (!r.diagram.swept) fail("the sweep", "did not build a layer it takes");
   const std::string d = same_pieces(subdivision.diagram.pieces, r.diagram.pieces, 1e-9);
   if (!d.empty()) fail("the sweep against the subdivision", d.c_str());
+  if (opt.build.tile_size == 0) return;
+  // In tiles: the whole layer's sweep, bit for bit.
+  opt.build.tile_size = 0;
+  const std::vector<Piece>& tiled = r.diagram.pieces;
+  const std::vector<Piece> whole = voronoi_of_polygons(L.polygons, opt).diagram.pieces;
+  bool same = tiled.size() == whole.size();
+  for (std::size_t i = 0; same && i < tiled.size(); ++i)
+    same = tiled[i].a == whole[i].a && tiled[i].b == whole[i].b && tiled[i].p.x == whole[i].p.x &&
+           tiled[i].p.y == whole[i].p.y && tiled[i].q.x == whole[i].q.x && tiled[i].q.y == whole[i].q.y;
+  if (!same) fail("the sweep in tiles", "differs from the whole layer's sweep");
 }
 
 void diagram_stage(const Layout& L) {

@@ -24,8 +24,8 @@ def parse_tile(text, dbu):
 
 def parse_builder(text):
     """-rd builder=sweep|subdivision: the diagram's construction (the same diagram either way).
-    The sweep-line builder takes Manhattan layers (points and axis-parallel edges) in one thread
-    and one part; on any other layer, or with tiles on a cluster, the subdivision builds it."""
+    The sweep-line builder takes Manhattan layers (points and axis-parallel edges), tile by tile
+    on the worker threads; on any other layer, or with tiles on a cluster, the subdivision builds it."""
     if text in (None, "", "subdivision"):
         return "subdivision"
     if text == "sweep":

@@ -179,3 +179,76 @@ TEST(Sweep, Stress) {
   }
   EXPECT_EQ(bad, 0);
 }
+
+namespace {
+
+// The first piece where two lists differ bit for bit, or "".
+std::string bitwise(const std::vector<Piece>& a, const std::vector<Piece>& b) {
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i)
+    if (a[i].a != b[i].a || a[i].b != b[i].b || a[i].p.x != b[i].p.x || a[i].p.y != b[i].p.y || a[i].q.x != b[i].q.x ||
+        a[i].q.y != b[i].q.y || a[i].d1 != b[i].d1 || a[i].d2 != b[i].d2)
+      return "piece " + std::to_string(i) + " of " + std::to_string(a.size()) + ": owners " + std::to_string(a[i].a) +
+             "," + std::to_string(a[i].b) + " against " + std::to_string(b[i].a) + "," + std::to_string(b[i].b);
+  return a.size() == b.size() ? "" : "sizes " + std::to_string(a.size()) + " and " + std::to_string(b.size());
+}
+
+// The sweep tile by tile against the whole layer's sweep, for several tile sizes and threads:
+// "" or what differs. `tiled` counts the runs that had more than one tile.
+std::string tiles_against_whole(const Sites& s, int& tiled) {
+  const Box clip = clip_box(s);
+  const std::vector<Piece> whole = sweep_pieces(s, clip);
+  const double side = std::max(clip.x2 - clip.x1, clip.y2 - clip.y1) / 3;  // the sites' box
+  for (double tile : {-1.0, side / 2, side / 5, side / 13, 1.0})
+    for (int threads : {1, 2}) {
+      BuildOptions o;
+      o.sweep = true, o.tile_size = tile, o.threads = threads;
+      BuildStats st;
+      const std::string d = bitwise(whole, build_pieces(s, clip, o, &st));
+      if (!d.empty()) return "tile " + std::to_string(tile) + ", " + std::to_string(threads) + " threads: " + d;
+      tiled += st.tiles > 1;
+    }
+  return "";
+}
+
+}  // namespace
+
+TEST(Sweep, TilesGiveTheWholeLayersSweepBitForBit) {
+  // Tiles (tiles.hpp, sweep_tiled): each tile's sites are those meeting it and those within
+  // reach of its border; a site missing there changes a piece inside the tile. Random layouts,
+  // blocks of them, point sets (wide empty stretches: long reaches) and a long thin row of
+  // wires (a root box far wider than the sites' band).
+  int tiled = 0, cases = 0;
+  auto run = [&](const Sites& s, const std::string& name) {
+    ++cases;
+    const std::string d = tiles_against_whole(s, tiled);
+    EXPECT_EQ(d, "") << name;
+  };
+  for (std::uint64_t seed = 1; seed <= 60; ++seed)
+    run(sites_of_polygons(merge_polygons(linf::testing::random_layout(seed, linf::testing::Style::Rectilinear, 1 + int(seed % 10)))),
+        "layout " + std::to_string(seed));
+  for (std::uint64_t seed = 1; seed <= 3; ++seed)
+    run(sites_of_polygons(merge_polygons(linf::testing::block(seed, linf::testing::Style::Rectilinear, 8, 6))),
+        "block " + std::to_string(seed));
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) run(points(random_points(seed, 3000, 1 << (8 + 4 * int(seed)))), "points " + std::to_string(seed));
+  std::vector<Polygon> row;
+  for (int i = 0; i < 600; ++i) row.push_back(linf::testing::box(40 * i, (i % 3) * 7, 40 * i + 24 + i % 5, 30 + (i % 2) * 9));
+  run(sites_of_polygons(merge_polygons(row)), "a row of wires");
+  EXPECT_GT(tiled, cases * 4) << "most runs had several tiles";
+}
+
+TEST(Sweep, TilesReportAFailingSinkWithoutHanging) {
+  // The tiles are swept on worker threads and handed over in order by one of them: an
+  // exception from the sink (a full disk, a memory limit) reaches the caller; no thread waits
+  // forever for a tile that will not come.
+  const Sites s = sites_of_polygons(merge_polygons(linf::testing::block(7, linf::testing::Style::Rectilinear, 8, 8)));
+  BuildOptions o;
+  o.sweep = true, o.threads = 2;
+  o.tile_size = 400;
+  int parts = 0;
+  EXPECT_THROW(build_parts(s, clip_box(s), o, nullptr,
+                           [&](std::vector<Piece>&, const Box&) {
+                             if (++parts == 3) throw std::runtime_error("sink failed");
+                           }),
+               std::runtime_error);
+  EXPECT_EQ(parts, 3);
+}
