@@ -4,6 +4,7 @@
 //   build/bench_sweep [runs=3] [max_points=1000000]      generated point sets and wires
 //   build/bench_sweep runs NAME FILE [NAME FILE ...]       layers (bench/bench_sweep_layers.py)
 //   build/bench_sweep tiles runs [NAME FILE ...]           the sweep in tiles, 1 and 2 threads
+//   build/bench_sweep memory WIRES TILE THREADS             one build, for /usr/bin/time -v
 //
 // Prints one markdown row an input: the best of `runs` timings of each (alternating), the
 // ratios sweep / Boost and subdivision / sweep, and whether the two L-inf builders gave the
@@ -165,6 +166,15 @@ std::vector<Polygon> read_polygons(const char* path) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 4 && std::string(argv[1]) == "memory") {  // bench_sweep memory WIRES TILE THREADS, under /usr/bin/time
+    const Sites s = sites_of_polygons(merge_polygons(wires(std::strtoull(argv[2], nullptr, 10), 4)));
+    BuildOptions o;
+    o.sweep = true, o.tile_size = std::atof(argv[3]), o.threads = std::atoi(argv[4]);
+    std::size_t n = 0;
+    const double t = seconds([&] { n = build_pieces(s, clip_box(s), o).size(); });
+    std::printf("%zu sites, tile %s, %d threads: %zu pieces in %.3f s\n", s.sites.size(), argv[3], o.threads, n, t);
+    return 0;
+  }
   if (argc > 1 && std::string(argv[1]) == "tiles") {  // bench_sweep tiles RUNS [NAME FILE ...]
     const int runs = argc > 2 ? std::atoi(argv[2]) : 3;
     std::printf("| input | sites | automatic tiles | whole layer, 1 thread | tiles, 1 thread | tiles, 2 threads | "
