@@ -6,6 +6,7 @@
 // and the vertex is there either way as the end of the pieces around it. So neither side's
 // points are compared.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -19,8 +20,11 @@ namespace linf::fuzz {
 
 // "" if every piece of each side has its match on the other; else the first one that has not.
 inline std::string same_pieces(const std::vector<Piece>& subdivision, const std::vector<Piece>& sweep, double tol) {
+  // Relative to the point's size, not to each coordinate's: a builder rounds both coordinates
+  // of a point at its scale (the subdivision gave y = 7.5e-9 for 0 at x = 3.8e8).
   auto near = [tol](const Vec2& u, const Vec2& v) {
-    return std::fabs(u.x - v.x) <= tol * (1 + std::fabs(u.x)) && std::fabs(u.y - v.y) <= tol * (1 + std::fabs(u.y));
+    const double scale = 1 + std::max(std::fabs(u.x), std::fabs(u.y));
+    return std::fabs(u.x - v.x) <= tol * scale && std::fabs(u.y - v.y) <= tol * scale;
   };
   auto same = [&](const Piece& x, const Piece& y) {
     return (near(x.p, y.p) && near(x.q, y.q)) || (near(x.p, y.q) && near(x.q, y.p));

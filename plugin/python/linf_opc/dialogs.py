@@ -207,7 +207,7 @@ LITHO_LABELS = {"": "none: the geometric score", "duv193": "duv193: ArF immersio
 
 # The diagram's construction (-rd builder): the same files either way.
 BUILDER_LABELS = {"subdivision": "subdivision: any layer, tiles on all cores",
-                  "sweep": "sweep line: Manhattan layers, faster, one core"}
+                  "sweep": "sweep line: Manhattan layers, faster"}
 
 
 class FlowDialog(pya.QDialog):
