@@ -1,6 +1,7 @@
 # Speed of the gauge stage (diagram included) against KLayout's own width plus space checks
 # (metrics Square) on the same layer, measured in the same run:
 #   klayout -b -r bench/bench_gauges.py [-rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd t=DBU] [-rd reach=0]
+#                                       [-rd builder=sweep]
 # Default input: ../shared/data/iccad16/testcase3.oas, 1000/0.
 # The goal's comparison (docs/benchmarks.md, "Comparing with KLayout's checks"): the checks at the gauges' own reach,
 # width_check above the widest width and space_check above the widest space the gauges report,
@@ -34,10 +35,11 @@ region = layout.region_of(cell, li)
 polygons = layout.polygons_of(region)
 t_read = time.perf_counter() - t0
 cores = os.cpu_count() or 1
-r_all = gauges.compute(polygons, threads=0)
+builder = g.get("builder") or "subdivision"
+r_all = gauges.compute(polygons, threads=0, builder=builder)
 t_all = t_read + r_all.seconds["total"]
 del r_all
-r = gauges.compute(polygons, threads=1)
+r = gauges.compute(polygons, threads=1, builder=builder)
 t_gauges = t_read + r.seconds["total"]
 w0 = min(x.cd for x in r.gauges if x.type == "internal")
 t = int(g.get("t") or 2 * w0)
@@ -51,8 +53,8 @@ n_drc = width.size() + space.size()
 t_drc = time.perf_counter() - t0
 
 s = r.seconds
-print("input: %s %d/%d cell %s: %d polygons, %d sites, %d gauges"
-      % (os.path.basename(path), L, D, cell.name, len(polygons), r.diagram["sites"], len(r.gauges)))
+print("input: %s %d/%d cell %s: %d polygons, %d sites, %d gauges; builder %s"
+      % (os.path.basename(path), L, D, cell.name, len(polygons), r.diagram["sites"], len(r.gauges), builder))
 print("gauges (diagram included), 1 builder thread: %.2f s (read %.2f, merge %.2f, build %.2f, check %.2f, gauges %.2f);"
       " %d threads: %.2f s" % (t_gauges, t_read, s["merge"], s["build"], s["check"], s["gauges"], cores, t_all))
 print("KLayout width + space checks, t = %d DBU, Square: %.2f s (%d edge pairs: the narrowest places only)"
