@@ -99,7 +99,9 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
   const double margin = std::floor(std::max({x2 - x1, y2 - y1, 64.0}) / 64) + 0.3125;
   const Box inner{x1 - margin, y1 - margin, x2 + margin, y2 + margin};
   const bool sweep = opt.sweep && !runner;
-  if (sweep && opt.tile_size == 0) {  // one tile: the whole layer in one sweep
+  const bool one_pass = !opt.far_field_pass || inner.x1 <= lclip.x1 || inner.y1 <= lclip.y1 ||
+                        inner.x2 >= lclip.x2 || inner.y2 >= lclip.y2;
+  if (sweep && (one_pass || opt.tile_size == 0)) {  // one tile: the whole layer in one sweep
     if (progress) progress("building the diagram", 0, 0);
     std::vector<Piece> part = sweep_part(sites.sites, all, clip);
     st.tiles = 1, st.largest_tile_sites = all.size();
@@ -107,14 +109,7 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
     sink(part, clip);
     return;
   }
-  if (!opt.far_field_pass || inner.x1 <= lclip.x1 || inner.y1 <= lclip.y1 || inner.x2 >= lclip.x2 ||
-      inner.y2 >= lclip.y2) {
-    if (sweep) {
-      std::vector<Piece> part = sweep_part(sites.sites, all, clip);
-      if (stats) *stats = st;
-      sink(part, clip);
-      return;
-    }
+  if (one_pass) {
     std::vector<Piece> part =
         run(sites.sites, origin, all, lclip, nullptr, opt, tau, st, progress, "building the diagram");
     if (stats) *stats = st;
