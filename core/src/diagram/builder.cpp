@@ -125,24 +125,25 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
     return std::fabs(v.x - inner.x1) <= eps || std::fabs(v.x - inner.x2) <= eps || std::fabs(v.y - inner.y1) <= eps ||
            std::fabs(v.y - inner.y2) <= eps;
   };
-  const PartSink inner_sink = [&](std::vector<Piece>& part, const Box& frame) {
+  // The border's marks and owners from a part's pieces, `o` their offset from the builder's
+  // coordinates (the sweep's parts come in layout coordinates: its vertices as it computed them).
+  auto note_border = [&](const std::vector<Piece>& part, const Vec2& o) {
     for (const Piece& p : part) {
-      if (on_border(p.p)) marks.push_back({p.p, p.d1});
-      if (on_border(p.q)) marks.push_back({p.q, p.d2});
-      if (on_border(p.p) || on_border(p.q)) border.push_back(p.a), border.push_back(p.b);
+      const Vec2 u{p.p.x - o.x, p.p.y - o.y}, v{p.q.x - o.x, p.q.y - o.y};
+      const bool at_u = on_border(u), at_v = on_border(v);
+      if (at_u) marks.push_back({u, p.d1});
+      if (at_v) marks.push_back({v, p.d2});
+      if (at_u || at_v) border.push_back(p.a), border.push_back(p.b);
     }
-    to_layout(part, origin);
-    sink(part, shifted(frame, double(origin.x), double(origin.y)));
   };
-  // The sweep's parts come in layout coordinates: its vertices as it computed them.
   const Vec2 o{double(origin.x), double(origin.y)};
+  const PartSink inner_sink = [&](std::vector<Piece>& part, const Box& frame) {
+    note_border(part, {0, 0});
+    to_layout(part, origin);
+    sink(part, shifted(frame, o.x, o.y));
+  };
   const PartSink swept_sink = [&](std::vector<Piece>& part, const Box& frame) {
-    auto at = [&](const Vec2& v) { return on_border({v.x - o.x, v.y - o.y}); };
-    for (const Piece& p : part) {
-      if (at(p.p)) marks.push_back({{p.p.x - o.x, p.p.y - o.y}, p.d1});
-      if (at(p.q)) marks.push_back({{p.q.x - o.x, p.q.y - o.y}, p.d2});
-      if (at(p.p) || at(p.q)) border.push_back(p.a), border.push_back(p.b);
-    }
+    note_border(part, o);
     sink(part, frame);
   };
   // The tiles here or by the runner (same parts, same order); the far field is built here.

@@ -310,8 +310,8 @@ class Plan {
 
   struct Scratch { Paged<std::uint32_t> seen; std::uint32_t stamp = 0; };  // one entry a site
 
-  // The L-inf distance from c to its nearest site (points and axis-parallel segments: their
-  // boxes), INFINITY if there are none. `h` is scratch.
+  // The L-inf distance from c to the nearest of `among` (points and axis-parallel segments:
+  // their boxes), INFINITY if none.
   double distance(const Vec2& c, const std::vector<int>& among) const {
     double f = INFINITY;
     for (int t : among) {
@@ -321,6 +321,7 @@ class Plan {
     }
     return f;
   }
+  // The distance from c to its nearest site, INFINITY if there are none. `h` is scratch.
   double nearest(const Vec2& c, Scratch& sc, std::vector<int>& h) const {
     const double span = std::max(root_.x2 - root_.x1, root_.y2 - root_.y1);
     const double cell = span / double(std::size_t(1) << level_);
