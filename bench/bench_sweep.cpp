@@ -5,6 +5,7 @@
 //   build/bench_sweep runs NAME FILE [NAME FILE ...]       layers (bench/bench_sweep_layers.py)
 //   build/bench_sweep tiles runs [NAME FILE ...]           the sweep in tiles, 1 and 2 threads
 //   build/bench_sweep memory WIRES TILE THREADS             one build, for /usr/bin/time -v
+//   build/bench_sweep check runs NAME FILE|wires:N ...     the checker, sampled and full, against the build
 //
 // Prints one markdown row an input: the best of `runs` timings of each (alternating), the
 // ratios sweep / Boost and subdivision / sweep, and whether the two L-inf builders gave the
@@ -139,6 +140,37 @@ void tiles_row(const std::string& name, const Sites& s, int runs) {
   std::fflush(stdout);
 }
 
+// The independent checker against the builds it checks, one thread each: the sampled check (the
+// pipeline's default, kSampledSearchEvery) and the full one on the whole-layer sweep's pieces,
+// over the sweep's and the subdivision's time for them (the subdivision only below 10^6 sites).
+void check_row(const std::string& name, const Sites& s, int runs) {
+  Diagram d;
+  d.sites = s;
+  d.clip = clip_box(s);
+  BuildOptions sweep, sub;
+  sweep.sweep = true, sweep.tile_size = 0, sweep.threads = 1;
+  sub.threads = 1;
+  const bool with_subdivision = s.sites.size() < 1000000;
+  double tb = 1e30, tsub = 1e30, tc = 1e30, tf = 1e30;
+  CheckOptions sampled, full;
+  sampled.search_every = kSampledSearchEvery, full.search_every = 1;
+  sampled.threads = full.threads = 1;
+  bool ok = true;
+  for (int r = 0; r < runs; ++r) {
+    tb = std::min(tb, seconds([&] { d.pieces = build_pieces(s, d.clip, sweep); }));
+    if (with_subdivision) tsub = std::min(tsub, seconds([&] { build_pieces(s, d.clip, sub); }));
+    tc = std::min(tc, seconds([&] { ok = check_diagram(d, sampled).ok() && ok; }));
+    tf = std::min(tf, seconds([&] { ok = check_diagram(d, full).ok() && ok; }));
+  }
+  if (with_subdivision)
+    std::printf("| %s | %zu | %zu | %.3f s | %.3f s | %.3f s | %.3f s | %.2f | %.2f | %.2f | %s |\n", name.c_str(), s.sites.size(),
+                d.pieces.size(), tb, tsub, tc, tf, tc / tb, tc / tsub, tf / tb, ok ? "yes" : "NO");
+  else
+    std::printf("| %s | %zu | %zu | %.3f s | — | %.3f s | %.3f s | %.2f | — | %.2f | %s |\n", name.c_str(), s.sites.size(),
+                d.pieces.size(), tb, tc, tf, tc / tb, tf / tb, ok ? "yes" : "NO");
+  std::fflush(stdout);
+}
+
 std::vector<Polygon> read_polygons(const char* path) {
   std::vector<Polygon> out;
   std::FILE* f = std::fopen(path, "r");
@@ -173,6 +205,19 @@ int main(int argc, char** argv) {
     std::size_t n = 0;
     const double t = seconds([&] { n = build_pieces(s, clip_box(s), o).size(); });
     std::printf("%zu sites, tile %s, %d threads: %zu pieces in %.3f s\n", s.sites.size(), argv[3], o.threads, n, t);
+    return 0;
+  }
+  if (argc > 1 && std::string(argv[1]) == "check") {  // bench_sweep check RUNS [NAME FILE ...]
+    const int runs = argc > 2 ? std::atoi(argv[2]) : 3;
+    std::printf("| input | sites | pieces | sweep, 1 thread | subdivision, 1 thread | sampled check, 1 thread | full check, 1 thread | "
+                "sampled / sweep | sampled / subdivision | full / sweep | passed |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (int i = 3; i + 1 < argc; i += 2) {
+      const std::string file = argv[i + 1];
+      check_row(argv[i], sites_of_polygons(merge_polygons(file.rfind("wires:", 0) == 0
+                                                              ? wires(std::strtoull(file.c_str() + 6, nullptr, 10), 4)
+                                                              : read_polygons(file.c_str()))),
+                runs);
+    }
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "tiles") {  // bench_sweep tiles RUNS [NAME FILE ...]

@@ -16,7 +16,7 @@ void bind_diagram(py::module_& m) {
 
   m.def(
       "voronoi_polygons",
-      [](const py::object& polys, bool check, int pairs, int threads, double tile, const std::string& csv,
+      [](const py::object& polys, const py::object& check, int pairs, int threads, double tile, const std::string& csv,
          double dbu, bool with_pieces, const std::string& gds, int gds_layer, const std::string& gds_cell,
          const py::object& tiles, const py::object& progress, const std::string& builder) {
         const LayerInput in(polys);
@@ -82,7 +82,7 @@ void bind_diagram(py::module_& m) {
 
   m.def(
       "voronoi_sites",
-      [](const std::vector<XY>& points, const std::vector<std::pair<XY, XY>>& segments, bool check, int pairs,
+      [](const std::vector<XY>& points, const std::vector<std::pair<XY, XY>>& segments, const py::object& check, int pairs,
          int threads) {
         std::vector<Point> p;
         for (auto& q : points) p.push_back({q.first, q.second});

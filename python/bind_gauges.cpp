@@ -63,7 +63,7 @@ py::dict gauge_table(const Sites& sites, Gauges& g, bool with_paths, const std::
 void bind_gauges(py::module_& m) {
   m.def(
       "gauges_polygons",
-      [](const py::object& polys, bool check, int pairs, int threads, double tooth_fraction, double space_limit,
+      [](const py::object& polys, const py::object& check, int pairs, int threads, double tooth_fraction, double space_limit,
          bool with_pieces, bool with_paths, double tile, const std::string& csv, double dbu, const std::string& gds,
          int gds_layer, const std::string& gds_cell, const std::string& gauges_csv, const std::string& columns,
          const py::object& tiles, const py::object& progress, const std::string& builder) {

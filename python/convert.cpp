@@ -71,14 +71,21 @@ ProgressFn progress_of(const py::object& fn) {
   };
 }
 
-DiagramOptions options(bool check, int pairs, int threads, double tile, const py::object& progress,
+DiagramOptions options(const py::object& check, int pairs, int threads, double tile, const py::object& progress,
                        const std::string& builder) {
   if (builder != "subdivision" && builder != "sweep")
     throw py::value_error("builder must be 'subdivision' or 'sweep', not '" + builder + "'");
   DiagramOptions o;
   o.sweep = builder == "sweep";
   o.progress = progress_of(progress);
-  o.check = check;
+  // True and "sample": the sampled check (the default); "full"; False and "off": none.
+  const std::string mode = py::isinstance<py::str>(check) ? check.cast<std::string>()
+                           : check.cast<bool>()            ? "sample"
+                                                           : "off";
+  if (mode != "sample" && mode != "full" && mode != "off")
+    throw py::value_error("check must be True, False, 'sample', 'full' or 'off', not '" + mode + "'");
+  o.check = mode != "off";
+  o.checker.search_every = mode == "full" ? 1 : kSampledSearchEvery;
   o.checker.crossing_pairs = pairs;
   o.build.threads = threads;
   o.build.tile_size = tile;
@@ -99,6 +106,7 @@ py::dict summary_dict(const Diagram& d, const CheckReport& c) {
   py::dict check;
   check["ok"] = c.ok();
   check["sampled_points"] = c.sampled_points;
+  check["searched_pieces"] = c.searched_pieces;
   check["pairs_tested"] = c.pairs_tested;
   check["pairs_separated"] = c.pairs_separated;
   check["worst_error"] = c.worst_error;

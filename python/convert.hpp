@@ -99,7 +99,7 @@ py::bytes bytes_of(const std::vector<T>& v) {
 // and a C++ buffer copied into bytes would hold them twice.
 py::bytes blank_bytes(std::size_t n, char*& data);
 
-DiagramOptions options(bool check, int pairs, int threads, double tile = 0, const py::object& progress = py::none(),
+DiagramOptions options(const py::object& check, int pairs, int threads, double tile = 0, const py::object& progress = py::none(),
                        const std::string& builder = "subdivision");
 
 // What is taken from the diagram while the core holds it: voronoi.csv and the pieces as GDSII

@@ -5,7 +5,9 @@
 #   (every row but pieces shorter than the grid);
 # - clearances, with KLayout's own geometry: around a sampled piece end (x, y) with clearance d,
 #   the square of half-side d - 2 DBU holds no boundary of the layer and the one of d + 2 DBU
-#   meets it; the two owner sites written in the row are at L-inf distance d.
+#   meets it; the two owner sites written in the row are at L-inf distance d;
+# - -rd check: the sampled default and check=full write the same voronoi.csv, full searches
+#   every piece; check=some is a usage error (exit 2, nothing written).
 # Exit code 0 when all hold; the first failures are printed.
 import csv
 import json
@@ -118,4 +120,25 @@ for r in sample:
             bad += 1
             if bad < 5: print("no boundary at the clearance", r)
 expect(bad == 0, "%d clearance failures in %d sampled pieces" % (bad, len(sample)))
+
+# -rd check: the default searches about one piece in 16 for a closer site, check=full every
+# piece; the diagram is the same bytes either way, and anything else is a usage error.
+searched = summary["check"]["searched_pieces"]
+if len(rows) >= 1000:
+    expect(len(rows) / 64 < searched < len(rows) / 4, "sampled check searched %d of %d pieces" % (searched, len(rows)))
+full = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] +
+                      [a.replace("out=" + work, "out=" + work + "_full") for a in args] + ["-rd", "check=full"],
+                      capture_output=True, text=True)
+expect(full.returncode == 0, "check=full exit %d: %s" % (full.returncode, full.stderr.strip()))
+if full.returncode == 0:
+    fs = json.load(open(os.path.join(work + "_full", "summary.json")))
+    expect(fs["check"]["ok"] and fs["check"]["searched_pieces"] == fs["pieces"] == summary["pieces"],
+           "check=full searched %d of %d pieces" % (fs["check"]["searched_pieces"], fs["pieces"]))
+    expect(open(os.path.join(work + "_full", "voronoi.csv"), "rb").read() ==
+           open(os.path.join(work, "voronoi.csv"), "rb").read(), "check=full: the same voronoi.csv")
+bogus = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] +
+                       [a.replace("out=" + work, "out=" + work + "_bogus") for a in args] + ["-rd", "check=some"],
+                       capture_output=True, text=True)
+expect(bogus.returncode == 2 and "check must be sample or full" in bogus.stderr and
+       not os.path.exists(os.path.join(work + "_bogus", "voronoi.csv")), "check=some: exit %d" % bogus.returncode)
 finish("checked %d rows, %d sampled ends" % (len(rows), 2 * len(sample)))

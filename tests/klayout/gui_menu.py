@@ -297,6 +297,9 @@ def fill_flow_dialog():
     expect(d.values()["builder"] == "subdivision", "the subdivision builds the diagram by default")
     d.builder.currentIndex = d.builder.findText(dialogs.BUILDER_LABELS["sweep"])
     expect(d.values()["builder"] == "sweep", "the sweep line chosen: %r" % d.values()["builder"])
+    expect(d.values()["check"] == "sample", "the sampled check by default")
+    d.check.currentIndex = d.check.findText(dialogs.CHECK_LABELS["full"])
+    expect(d.values()["check"] == "full", "the full check chosen: %r" % d.values()["check"])
     state["flow_shot"] = d.grab().save(os.path.splitext(g["shot"])[0] + "_flow_dialog.png")
     d._ok()
     expect(not asked[1:], "valid values into an empty folder: no question")
@@ -332,7 +335,8 @@ def check_remembered():
     d = dialogs.current
     expect(d is not None and d.markers.currentText == g["markers"] and d.sizes.text == "5,6"
            and d.budget.text == "50" and d.verify.text == "20" and d.split.currentIndex == 0
-           and d.out.text == state["flow_out"] and d.values()["litho"] == "euv" and d.values()["builder"] == "sweep",
+           and d.out.text == state["flow_out"] and d.values()["litho"] == "euv" and d.values()["builder"] == "sweep"
+           and d.values()["check"] == "full",
            "the flow dialog remembers its settings")
     if d is not None:
         d.reject()
@@ -359,7 +363,10 @@ def flow_step():
                                 "verification_gauges.csv", "split.json", "flow.lyrdb", "summary.json"]),
                "the flow wrote its default files, no more")
         with open(os.path.join(state["flow_out"], "summary.json")) as f:
-            built = json.load(f)["voronoi"]["builder"]
+            voronoi = json.load(f)["voronoi"]
+        built = voronoi["builder"]
+        expect(voronoi["check"]["searched_pieces"] == voronoi["pieces"] > 0,
+               "check=full chosen: every piece searched (%s)" % voronoi["check"])
         expect(built == "subdivision", "asked for the sweep, the subdivision built the sample (45-degree edges): %s"
                % built)
         li = ly.find_layer(L, 220)

@@ -1,10 +1,9 @@
 #include "linf/diagram/checker.hpp"
 
-#include <boost/container/small_vector.hpp>
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -14,14 +13,8 @@
 #include "util/parallel.hpp"
 
 namespace linf {
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
 
 namespace {
-using BPt = bg::model::point<double, 2, bg::cs::cartesian>;
-using BBox = bg::model::box<BPt>;
-using Entry = std::pair<BBox, std::int32_t>;
-using PairTree = bgi::rtree<Entry, bgi::rstar<16>>;  // the checker's point pairs (a few thousand)
 
 std::int32_t down(double v) { return std::int32_t(std::max(-2147483647.0, std::min(2147483647.0, std::floor(v)))); }
 std::int32_t up(double v) { return std::int32_t(std::max(-2147483647.0, std::min(2147483647.0, std::ceil(v)))); }
@@ -68,18 +61,31 @@ class SiteTree {
   // before segment, then lower index) and its distance. `clear` is false when some other
   // site is within `tol` without tying exactly: too close to a boundary to judge.
   struct Owner { std::int32_t site = -1; double dist = INFINITY; bool clear = true; };
-  Owner owner(double x, double y, double tol) const {
-    double bound = INFINITY;
-    int guesses = 0;
-    // Any site bounds the owner's distance; the nearest boxes are a good guess.
-    tree_.nearest(x, y, [&](std::int32_t i) {
-      bound = std::min(bound, dist_site(x, y, s_[i]));
-      return ++guesses < 2;
-    });
+  // `guess`: a likely distance to the owner (> 0), where the search starts.
+  Owner owner(double x, double y, double tol, double guess) const {
+    // The sites whose boxes meet a square about the point holding every site within the least
+    // distance found plus tol. Most points lie within `guess` of a site, and one search of
+    // that square settles them (a nearest-box search cost five times more). Farther out, the
+    // two nearest boxes bound the distance first: a square grown by doubling would overshoot
+    // into the layout and take thousands of sites.
     std::vector<std::pair<double, std::int32_t>> c;
-    tree_.query(square(x, y, bound + tol + 1e-9), [&](std::int32_t i) { c.emplace_back(dist_site(x, y, s_[i]), i); });
     Owner o;
-    for (const auto& e : c) o.dist = std::min(o.dist, e.first);
+    auto search = [&](double r) {
+      c.clear();
+      tree_.query(square(x, y, r), [&](std::int32_t i) { c.emplace_back(dist_site(x, y, s_[i]), i); });
+      o.dist = INFINITY;
+      for (const auto& e : c) o.dist = std::min(o.dist, e.first);
+      return o.dist + tol + 1e-9 <= r;
+    };
+    if (!search(guess)) {
+      double bound = o.dist;
+      int guesses = 0;
+      tree_.nearest(x, y, [&](std::int32_t i) {
+        bound = std::min(bound, dist_site(x, y, s_[i]));
+        return ++guesses < 2;
+      });
+      search(bound + tol + 1e-9);
+    }
     // Distances tie within their rounding: a few ulps of the local lengths (differences of
     // coordinates round relative to themselves) and of the point's coordinates. Not more: a
     // site nearer by more than that is nearer, and the L1 tie-break must not decide there
@@ -117,6 +123,21 @@ void fail(CheckReport& r, std::size_t& counter, const std::string& msg) {
   if (r.messages.size() < 20) r.messages.push_back(msg);
 }
 
+// Whether piece (a, b, p) is searched for a closer site when one piece in `every` is: a hash of
+// the piece itself, so that the choice depends neither on the threads nor on the order.
+bool searched(const Piece& pc, int every) {
+  if (every <= 1) return true;
+  std::uint64_t h = 0x9e3779b97f4a7c15ull;
+  auto mix = [&h](std::uint64_t v) {
+    h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    h ^= h >> 31, h *= 0xbf58476d1ce4e5b9ull, h ^= h >> 29;
+  };
+  std::uint64_t px, py;
+  std::memcpy(&px, &pc.p.x, 8), std::memcpy(&py, &pc.p.y, 8);
+  mix(std::uint32_t(pc.a)), mix(std::uint32_t(pc.b)), mix(px), mix(py);
+  return h % std::uint64_t(every) == 0;
+}
+
 bool segments_cross(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
   auto orient = [](const Vec2& o, const Vec2& u, const Vec2& v) {
     return (u.x - o.x) * (v.y - o.y) - (u.y - o.y) * (v.x - o.x);
@@ -136,7 +157,11 @@ struct Checker::Impl {
   CheckReport rep;
   struct Pair { Vec2 p, q; std::int32_t sp, sq; };
   std::vector<Pair> separated;
-  std::unique_ptr<PairTree> pairs;
+  // The separated pairs by their least x, and the widest pair's width: a piece meets only the
+  // pairs from its least x minus that width to its greatest x (a few thousand short pairs, so
+  // a sorted array does it in a binary search where a tree cost more than the test).
+  std::vector<std::pair<double, std::int32_t>> by_x;
+  double widest = 0;
   std::vector<char> crossed;
 
   Impl(const SiteList& s, const Box& c, const CheckOptions& o) : S(s), clip(c), opt(o), sites(s) {}
@@ -185,22 +210,20 @@ struct Checker::Impl {
       const Vec2 q{p.x + opt.pair_step * std::cos(ang), p.y + opt.pair_step * std::sin(ang)};
       auto inside = [&](const Vec2& v) { return v.x > clip.x1 && v.x < clip.x2 && v.y > clip.y1 && v.y < clip.y2; };
       if (!inside(p) || !inside(q)) continue;  // the diagram ends at the clip box
-      const auto op = sites.owner(p.x, p.y, tol), oq = sites.owner(q.x, q.y, tol);
+      const double guess = std::max(1.0, typical_clearance);
+      const auto op = sites.owner(p.x, p.y, tol, guess), oq = sites.owner(q.x, q.y, tol, guess);
       ++rep.pairs_tested;
       if (!op.clear || !oq.clear || op.site == oq.site) continue;
       if (op.dist <= tol || oq.dist <= tol) continue;  // on the boundary itself: no edge needed there
       ++rep.pairs_separated;
       separated.push_back({p, q, op.site, oq.site});
     }
-    std::vector<Entry> pe;
-    pe.reserve(separated.size());
     for (std::size_t i = 0; i < separated.size(); ++i) {
       const Pair& x = separated[i];
-      pe.emplace_back(BBox(BPt(std::min(x.p.x, x.q.x), std::min(x.p.y, x.q.y)),
-                           BPt(std::max(x.p.x, x.q.x), std::max(x.p.y, x.q.y))),
-                      std::int32_t(i));
+      by_x.emplace_back(std::min(x.p.x, x.q.x), std::int32_t(i));
+      widest = std::max(widest, std::fabs(x.p.x - x.q.x));
     }
-    pairs = std::make_unique<PairTree>(pe.begin(), pe.end());
+    std::sort(by_x.begin(), by_x.end());
     crossed.assign(separated.size(), 0);
   }
 
@@ -208,7 +231,7 @@ struct Checker::Impl {
   // pieces on the worker threads, each into its own report and marks, merged in chunk order,
   // so that the messages do not depend on the threads.
   void add(const Piece* pieces, std::size_t n) {
-    const int k = std::max(2, opt.samples_per_piece);
+    const int k = std::clamp(opt.samples_per_piece, 2, kMostSamples);
     const std::size_t chunk = 4096, nchunks = (n + chunk - 1) / chunk;
     std::vector<CheckReport> part(nchunks);
     std::vector<std::vector<char>> marks(detail::worker_count(nchunks, opt.threads), std::vector<char>(separated.size(), 0));
@@ -216,11 +239,14 @@ struct Checker::Impl {
       CheckReport& r = part[c];
       for (std::size_t pi = c * chunk; pi < std::min(n, (c + 1) * chunk); ++pi) {
         const Piece& pc = pieces[pi];
-        boost::container::small_vector<double, 8> xs(k), ys(k), da(k), db(k), radius(k);
+        const Site &sa = S[pc.a], &sb = S[pc.b];
+        // Plain arrays: the samples of a few hundred thousand pieces a second, where vectors'
+        // set-up cost more than the distances.
+        std::array<double, kMostSamples> xs, ys, da, db, radius;
         for (int i = 0; i < k; ++i) {
           const double t = double(i) / double(k - 1);
           xs[i] = pc.p.x + t * (pc.q.x - pc.p.x), ys[i] = pc.p.y + t * (pc.q.y - pc.p.y);
-          da[i] = dist_site(xs[i], ys[i], S[pc.a]), db[i] = dist_site(xs[i], ys[i], S[pc.b]);
+          da[i] = dist_site(xs[i], ys[i], sa), db[i] = dist_site(xs[i], ys[i], sb);
           radius[i] = std::min(da[i], db[i]) - tol;
         }
         auto where = [&](int i) {  // formatted on failure only: sampling runs by the million
@@ -239,28 +265,37 @@ struct Checker::Impl {
             if (std::fabs(stated - da[i]) > tol) fail(r, r.clearance_errors, "wrong clearance at " + where(i));
           }
         }
-        // The nearest site closer than the owners, at each sample.
-        boost::container::small_vector<std::int32_t, 8> closer(k, -1);
-        boost::container::small_vector<double, 8> dc(k, INFINITY);
-        sites.closer_than(xs.data(), ys.data(), radius.data(), std::size_t(k), [&](std::size_t i, std::int32_t s, double d) {
-          if (d < dc[i]) closer[i] = s, dc[i] = d;
-        });
-        for (int i = 0; i < k; ++i) {
-          if (closer[i] < 0) continue;
-          r.worst_error = std::max(r.worst_error, radius[i] + tol - dc[i]);
-          std::ostringstream m;
-          m << "site " << closer[i] << " at " << dc[i] << " is closer than the owners at " << where(i);
-          fail(r, r.closer_site_errors, m.str());
+        // The nearest site closer than the owners, at each sample (of the pieces searched).
+        if (searched(pc, opt.search_every)) {
+          ++r.searched_pieces;
+          std::array<std::int32_t, kMostSamples> closer;
+          std::array<double, kMostSamples> dc;
+          closer.fill(-1), dc.fill(INFINITY);
+          sites.closer_than(xs.data(), ys.data(), radius.data(), std::size_t(k), [&](std::size_t i, std::int32_t s, double d) {
+            if (d < dc[i]) closer[i] = s, dc[i] = d;
+          });
+          for (int i = 0; i < k; ++i) {
+            if (closer[i] < 0) continue;
+            r.worst_error = std::max(r.worst_error, radius[i] + tol - dc[i]);
+            std::ostringstream m;
+            m << "site " << closer[i] << " at " << dc[i] << " is closer than the owners at " << where(i);
+            fail(r, r.closer_site_errors, m.str());
+          }
         }
-        const BBox b(BPt(std::min(pc.p.x, pc.q.x), std::min(pc.p.y, pc.q.y)),
-                     BPt(std::max(pc.p.x, pc.q.x), std::max(pc.p.y, pc.q.y)));
-        for (auto it = pairs->qbegin(bgi::intersects(b)); it != pairs->qend(); ++it)
-          if (segments_cross(separated[it->second].p, separated[it->second].q, pc.p, pc.q)) marks[w][it->second] = 1;
+        const double x1 = std::min(pc.p.x, pc.q.x), x2 = std::max(pc.p.x, pc.q.x);
+        const double y1 = std::min(pc.p.y, pc.q.y), y2 = std::max(pc.p.y, pc.q.y);
+        auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(x1 - widest, INT32_MIN));
+        for (; it != by_x.end() && it->first <= x2; ++it) {
+          const Pair& x = separated[std::size_t(it->second)];
+          if (std::max(x.p.y, x.q.y) < y1 || std::min(x.p.y, x.q.y) > y2) continue;
+          if (segments_cross(x.p, x.q, pc.p, pc.q)) marks[w][std::size_t(it->second)] = 1;
+        }
       }
     };
     detail::parallel_for(nchunks, opt.threads, sample);
     for (const CheckReport& r : part) {
       rep.sampled_points += r.sampled_points;
+      rep.searched_pieces += r.searched_pieces;
       rep.worst_error = std::max(rep.worst_error, r.worst_error);
       rep.equidistance_errors += r.equidistance_errors;
       rep.clearance_errors += r.clearance_errors;

@@ -7,6 +7,7 @@
 // Edges are cut where they cross the window's sides: an any-angle edge crosses at a rational
 // point, kept exactly as a reduced fraction.
 #include "linf/gauges/context.hpp"
+#include "linf/util/round.hpp"
 
 #include <algorithm>
 #include <array>
@@ -368,7 +369,7 @@ std::uint64_t canonical_id(const std::vector<Seg>& segs, std::int64_t R, Encodin
 
 std::int64_t half_units(double v) {
   if (!(std::fabs(v) < double(kCoordLimit))) throw std::invalid_argument("context point outside +-2^30 DBU");
-  return std::llround(2.0 * v);
+  return round_half_away(2.0 * v);
 }
 
 std::int32_t floor_half(std::int64_t v) { return std::int32_t(v >= 0 ? v / 2 : -((-v + 1) / 2)); }

@@ -1,8 +1,10 @@
 #include "linf/gauges/gauge.hpp"
 
 #include "linf/util/median.hpp"
+#include "linf/util/round.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -207,9 +209,9 @@ std::vector<bool> redundant(const Sites& s, const Stretches& all, const std::vec
   for (std::size_t i = 0; i < all.size(); ++i)
     if (ok[i]) by_pair.push_back({all[i].a, all[i].b, std::uint32_t(i)});
   std::sort(by_pair.begin(), by_pair.end());
-  auto related = [&](std::int32_t x) {
+  auto related = [&](std::int32_t x) {  // an array, not a vector: called a few times a stretch
     const Site& t = s.sites[x];
-    return std::vector<std::int32_t>{x, t.end0, t.end1};
+    return std::array<std::int32_t, 3>{x, t.end0, t.end1};
   };
   std::vector<bool> out(all.size(), false);
   for (std::size_t i = 0; i < all.size(); ++i) {
@@ -369,11 +371,17 @@ int context(GaugeType t) {
 }
 
 // Scores are compared on a 1e-6 DBU grid so that rounding never reorders equal widths.
-long long grid(double v) { return std::llround(v * 1e6); }
+long long grid(double v) { return round_half_away(v * 1e6); }
 
+// Score, then type, longer tiebreak, place, sites. Key by key, each computed only when the
+// ones before tie: the sort of a layer's gauges makes tens of millions of comparisons.
 bool before(const Gauge& x, const Gauge& y) {
-  return std::make_tuple(grid(x.score), context(x.type), -grid(x.tiebreak), grid(x.at.x), grid(x.at.y), x.a, x.b) <
-         std::make_tuple(grid(y.score), context(y.type), -grid(y.tiebreak), grid(y.at.x), grid(y.at.y), y.a, y.b);
+  if (const long long s = grid(x.score), t = grid(y.score); s != t) return s < t;
+  if (const int s = context(x.type), t = context(y.type); s != t) return s < t;
+  if (const long long s = grid(x.tiebreak), t = grid(y.tiebreak); s != t) return s > t;
+  if (const long long s = grid(x.at.x), t = grid(y.at.x); s != t) return s < t;
+  if (const long long s = grid(x.at.y), t = grid(y.at.y); s != t) return s < t;
+  return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
 }
 
 StretchFilter measurable_pairs(const Sites& s) {

@@ -33,6 +33,17 @@ def parse_builder(text):
     raise UsageError("builder must be sweep or subdivision, not %r" % text)
 
 
+def parse_check(text):
+    """-rd check=sample|full: how much of the independent check runs. sample (the default): every
+    piece's owners and clearances and the completeness pairs, and the search for a closer site on
+    one piece in 16; full: that search on every piece too (about four times the check's time)."""
+    if text in (None, "", "sample"):
+        return "sample"
+    if text == "full":
+        return "full"
+    raise UsageError("check must be sample or full, not %r" % text)
+
+
 def parse_window(text, dbu):
     """'x1,y1,x2,y2' in micrometres -> a box in DBU."""
     try:

@@ -4,6 +4,7 @@
   klayout -b -r macros/linf_opc.py -rd cmd=COMMAND -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd out=DIR
            [-rd tile=UM|0|auto]  (the diagram builder's tiles; the same pieces for any size)
            [-rd builder=subdivision|sweep]  (sweep: the sweep-line builder on Manhattan layers; the same pieces)
+           [-rd check=sample|full]  (the independent check: sampled search for closer sites, or on every piece)
            [-rd scheduler=tcp://HOST:PORT]  (voronoi, gauges, select, split, flow: the tiles built on that
            Dask cluster's workers; the same files)
            [-rd quiet=0|1]  (1: no progress lines on stderr)
@@ -37,8 +38,8 @@ from .staging import Staging
 _LAYER = ("input", "layer", "cell", "out", "markers", "quiet")  # a marker layer is read with the layer
 _SELECT = ("sizes", "modes", "mode", "size", "pitch", "max_norm", "halves", "pattern_classes", "class_area",
            "class_edge")
-# The diagram's construction: its tiles' size, a Dask cluster to build them on, the builder.
-_TILES = ("tile", "scheduler", "builder")
+# The diagram's construction: its tiles' size, a Dask cluster to build them on, the builder, the check.
+_TILES = ("tile", "scheduler", "builder", "check")
 _SPLIT = ("split", "budget", "verify", "context_radius", "fraction", "seed", "threshold", "bin")
 
 # name: (the function that runs it, the arguments it reads)

@@ -45,6 +45,7 @@ def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=
     """tile: side of the builder's tiles in DBU; 0 one tile, -1 automatic. The diagram is the
     same for every tile size; tiles bound the memory the builder holds at once.
     builder: "subdivision" or "sweep" (arguments.parse_builder; the same diagram).
+    check: True or "sample" (the default), "full" (arguments.parse_check), False none.
     csv_path: the core also writes voronoi.csv there (micrometres, `dbu`).
     draw_layer: a layer number: the core also writes the pieces as GDSII for diagram_output
     (datatypes 200 + kind; one cell named draw_cell).

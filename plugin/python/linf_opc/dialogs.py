@@ -208,12 +208,14 @@ LITHO_LABELS = {"": "none: the geometric score", "duv193": "duv193: ArF immersio
 # The diagram's construction (-rd builder): the same files either way.
 BUILDER_LABELS = {"subdivision": "subdivision: any layer, tiles on all cores",
                   "sweep": "sweep line: Manhattan layers, faster"}
+# The independent check (-rd check): the same files either way.
+CHECK_LABELS = {"sample": "sampled: one piece in 16 searched for a closer site", "full": "full: every piece searched"}
 
 
 class FlowDialog(pya.QDialog):
     """The whole flow: layer, markers, window sizes, coverage mode, split mode and its numbers
     (plan budget and verification size, fraction, threshold, seed), output folder, lithography
-    model, Dask scheduler, diagram builder."""
+    model, Dask scheduler, diagram builder, check."""
 
     def __init__(self, parent, layers, current_layer, settings, title, default_out="", layout_um=0.0):
         super().__init__(parent)
@@ -275,6 +277,11 @@ class FlowDialog(pya.QDialog):
             self.builder.addItem(label)
         self.builder.currentIndex = 1 if settings.get("builder") == "sweep" else 0
         form.addRow("Diagram builder", self.builder)
+        self.check = pya.QComboBox(self)
+        for label in CHECK_LABELS.values():
+            self.check.addItem(label)
+        self.check.currentIndex = 1 if settings.get("check") == "full" else 0
+        form.addRow("Independent check", self.check)
         _buttons(self, form, self._ok)
         self.split.currentIndexChanged = self._split_changed
         self._split_changed(self.split.currentIndex)
@@ -318,7 +325,8 @@ class FlowDialog(pya.QDialog):
                 "fraction": self.fraction.text.strip(), "threshold": self.threshold.text.strip(),
                 "seed": self.seed.text.strip(), "out": self.out.text.strip(),
                 "scheduler": self.scheduler.text.strip(), "litho": (("",) + PRESETS)[max(0, self.litho.currentIndex)],
-                "builder": list(BUILDER_LABELS)[max(0, self.builder.currentIndex)]}
+                "builder": list(BUILDER_LABELS)[max(0, self.builder.currentIndex)],
+                "check": list(CHECK_LABELS)[max(0, self.check.currentIndex)]}
 
 
 def ask_flow(layers, current_layer, title, default_out="", layout_um=0.0):

@@ -138,7 +138,7 @@ def run(inp, args, progress=None, model=None):
     # draws the pieces, and the pieces only stream past the gauges.
     p.start("diagram and gauges", "%s polygons" % count(len(inp.polygons)))
     result = gauge_stage.compute(inp.polygons, draw_layer=inp.layer if want.diagram else None, tile=inp.tile,
-                                 builder=inp.builder, csv_path=inp.file("voronoi.csv") if want.diagram else None,
+                                 builder=inp.builder, check=inp.check, csv_path=inp.file("voronoi.csv") if want.diagram else None,
                                  dbu=inp.dbu,
                                  gauges_csv=inp.file("gauges.csv") if want.all_gauges and model is None else None,
                                  draw_cell=inp.cell.name, progress=p.core)

@@ -153,7 +153,7 @@ def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, d
     """draw_layer: a layer number: also keep the diagram, drawable (Gauges.pieces_diagram, a
     diagram.Diagram with its GDSII file, see diagram.compute, also for draw_cell), so that a flow writes both
     without building the diagram twice. with_paths: each gauge's `stretch` is its stretch's
-    path [(x, y)] (else None). tile, csv_path, dbu, builder: as in diagram.compute (the gauges
+    path [(x, y)] (else None). check, tile, csv_path, dbu, builder: as in diagram.compute (the gauges
     are the same for every tile size and builder). gauges_csv: the core also writes gauges.csv there (micrometres,
     `dbu`; Gauges.csv_path). threads: builder workers, 0 one a core. progress: as in
     diagram.compute."""

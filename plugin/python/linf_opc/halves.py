@@ -29,7 +29,7 @@ def halves_similarity(inp, markers, pitch, size):
         if not polys or not ms:
             used.append((array("B"), array("d")))
             continue
-        gs = gauge_stage.compute(polys, tile=inp.tile, builder=inp.builder).gauges
+        gs = gauge_stage.compute(polys, tile=inp.tile, builder=inp.builder, check=inp.check).gauges
         del polys
         run = selection_stage.study(gs, ms, pitch, sizes=(size,), modes=("A",)).runs[("A", size)]
         used.append(run.used_types_scores())

@@ -9,7 +9,7 @@ from . import glp
 from . import layout as layer_io
 from . import markers as marker_io
 from . import polygons as polygons_io
-from .arguments import UsageError, parse_builder, parse_tile
+from .arguments import UsageError, parse_builder, parse_check, parse_tile
 from .staging import Staging
 
 
@@ -68,10 +68,11 @@ class Input:
     """The layer to work on: layout, cell, layer, its region and polygons (as drawn: the core
     merges them), where its files go (out: a Staging; dir: the output folder). The batch builds
     it from its arguments (from_args), the editor from the current view."""
-    def __init__(self, ly, cell, index, path, out, tile=-1, builder="subdivision"):
+    def __init__(self, ly, cell, index, path, out, tile=-1, builder="subdivision", check="sample"):
         self.ly, self.cell, self.index = ly, cell, index
         self.tile = tile  # the builder's tile side in DBU, 0 one tile, -1 automatic
         self.builder = builder  # "subdivision" or "sweep" (arguments.parse_builder)
+        self.check = check  # "sample" or "full" (arguments.parse_check)
         info = ly.get_info(index)
         self.layer, self.datatype = info.layer, info.datatype
         self.path = os.path.abspath(path) if path else ""
@@ -96,7 +97,7 @@ class Input:
         if not args.get("out"):
             raise UsageError("missing -rd out=DIR")
         return cls(ly, cell, index, args["input"], args["out"], parse_tile(args.get("tile"), ly.dbu),
-                   parse_builder(args.get("builder")))
+                   parse_builder(args.get("builder")), parse_check(args.get("check")))
 
     def file(self, name):
         return self.out.file(name)

@@ -88,7 +88,7 @@ def cmd_voronoi(args):
     p = progress_of(args)
     inp = read(args, p)
     s = diagram_output.write_voronoi(inp, computed(p, "diagram", inp, lambda: diagram_stage.compute(
-        inp.polygons, tile=inp.tile, builder=inp.builder, csv_path=inp.file("voronoi.csv"), dbu=inp.dbu,
+        inp.polygons, tile=inp.tile, builder=inp.builder, check=inp.check, csv_path=inp.file("voronoi.csv"), dbu=inp.dbu,
         with_pieces=False, draw_layer=inp.layer, draw_cell=inp.cell.name, progress=p.core)))
     output.write_json(s, inp.file("summary.json"))
     return voronoi_line(s, inp.dir)
@@ -110,7 +110,7 @@ def cmd_gauges(args):
     inp = read(args, p)
     window = arguments.parse_window(args["window"], inp.dbu) if args.get("window") else None
     result = printability(p, inp, computed(p, "diagram and gauges", inp, lambda: gauge_stage.compute(
-        inp.polygons, tile=inp.tile, builder=inp.builder, dbu=inp.dbu,
+        inp.polygons, tile=inp.tile, builder=inp.builder, check=inp.check, dbu=inp.dbu,
         gauges_csv=inp.file("gauges.csv") if window is None and model is None else None, progress=p.core)), model)
     gauges = result.gauges if window is None else gauge_stage.most_critical_in(result.gauges, window)
     p.start("writing the gauges", "%s gauges" % count(len(gauges)))
@@ -137,7 +137,7 @@ def cmd_select(args):
     model = litho.model_of(args)
     inp = read_for_markers(args, p)
     sel = flow.Selected(inp, args, printability(p, inp, computed(p, "diagram and gauges", inp,
-                        lambda: gauge_stage.compute(inp.polygons, tile=inp.tile, builder=inp.builder)), model), p)
+                        lambda: gauge_stage.compute(inp.polygons, tile=inp.tile, builder=inp.builder, check=inp.check)), model), p)
     selection_output.write_selection(inp, sel)
     selection_output.write_windows_report(inp, sel, None, "linf_opc select", inp.file("windows.lyrdb"))
     return select_line(sel, inp.dbu, inp.dir)
@@ -157,7 +157,7 @@ def cmd_split(args):
     flow.split_args(args, inp.dbu)  # a bad split argument stops the command before any work
     model = litho.model_of(args)
     sel = flow.Selected(inp, args, printability(p, inp, computed(p, "diagram and gauges", inp,
-                        lambda: gauge_stage.compute(inp.polygons, tile=inp.tile, builder=inp.builder)), model), p)
+                        lambda: gauge_stage.compute(inp.polygons, tile=inp.tile, builder=inp.builder, check=inp.check)), model), p)
     split = flow.split_of(args, sel, inp)
     selection_output.write_selection(inp, sel, split)
     s = split_output.write_split(inp, split, sel.gauges, getattr(sel.result.gauges, "litho", None))

@@ -1,8 +1,10 @@
 // The independent checker. It shares no code with the builder: distances come from
 // distance.hpp (minimum over breakpoints), neighbours from its own BoxTree of the sites (util/box_tree.hpp).
 //
-// 1. Every piece, sampled at its ends and inside: both owners at the same distance, the stated
-//    clearances at the ends, and no site of the diagram strictly closer.
+// 1. Every piece, sampled at its ends and inside: both owners at the same distance and the
+//    stated clearances at the ends; and no site of the diagram strictly closer, on every piece
+//    (a full check) or on one piece in CheckOptions::search_every, chosen by a hash of the piece
+//    (that search is most of a full check's cost: docs/design.md, "The checker").
 // 2. Random pairs of nearby points whose owners differ (by the ownership rule, see
 //    builder.hpp; pairs too close to a near-tie are skipped): some piece crosses
 //    the segment between them (no Voronoi edge is missing).
@@ -16,17 +18,24 @@
 
 namespace linf {
 
+constexpr int kMostSamples = 16;
+
 struct CheckOptions {
-  int samples_per_piece = 3;   // >= 2: the two ends, plus evenly spaced interior points
+  int samples_per_piece = 3;   // 2 to kMostSamples: the two ends, plus evenly spaced interior points
   int crossing_pairs = 2000;   // random pairs for the completeness test
   double pair_step = 2.0;      // DBU between the two points of a pair
   std::uint64_t seed = 1;
   double tolerance = 0;        // DBU; 0 picks 1e-6 + 1e-9 * coordinate scale
   int threads = 0;             // threads sampling the pieces; 0: one per core
+  int search_every = 1;        // 1: every piece searched for a closer site (full); n: one in n
 };
 
+// The pipeline's default, a sampled check (the batch's and the editor's -rd check=sample): one
+// piece in 16 searched for a closer site, every piece's owners and clearances tested, all pairs.
+constexpr int kSampledSearchEvery = 16;
+
 struct CheckReport {
-  std::size_t sampled_points = 0, pairs_tested = 0, pairs_separated = 0;
+  std::size_t sampled_points = 0, searched_pieces = 0, pairs_tested = 0, pairs_separated = 0;
   std::size_t equidistance_errors = 0, clearance_errors = 0, closer_site_errors = 0, missing_edge_errors = 0;
   double worst_error = 0;             // DBU, over all distance tests
   std::vector<std::string> messages;  // the first few failures, with coordinates
