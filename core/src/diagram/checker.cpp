@@ -90,17 +90,25 @@ class SiteTree {
     // coordinates round relative to themselves) and of the point's coordinates. Not more: a
     // site nearer by more than that is nearer, and the L1 tie-break must not decide there
     // (1e-12 of the coordinates would be 2e-3 DBU near 2^30).
+    // Within that, only equal values are a tie the rule decides: two that differ by less than
+    // their rounding could be either way round (a segment whose L1 distance falls below its
+    // own end point's by 1e-9 at 10^8 DBU was taken for a tie), so the point is not clear.
     const double exact = 1e-12 * (1 + o.dist) + 1e-15 * (std::fabs(x) + std::fabs(y));
     double lmin = INFINITY;
     std::vector<std::pair<double, std::int32_t>> tied;
     for (const auto& e : c) {
-      if (e.first <= o.dist + exact) tied.emplace_back(dist_site_l1(x, y, s_[e.second]), e.second);
-      else if (e.first <= o.dist + tol) o.clear = false;
+      if (e.first <= o.dist + exact) {
+        tied.emplace_back(dist_site_l1(x, y, s_[e.second]), e.second);
+        if (e.first != o.dist) o.clear = false;
+      } else if (e.first <= o.dist + tol) {
+        o.clear = false;
+      }
     }
     for (const auto& e : tied) lmin = std::min(lmin, e.first);
     for (const auto& e : tied) {
       if (e.first <= lmin + exact) {
         if (o.site < 0 || before(e.second, o.site)) o.site = e.second;
+        if (e.first != lmin) o.clear = false;
       } else if (e.first <= lmin + tol) {
         o.clear = false;
       }
