@@ -24,12 +24,13 @@ def parse_tile(text, dbu):
 
 def parse_builder(text):
     """-rd builder=sweep|subdivision: the diagram's construction (the same diagram either way).
-    The sweep-line builder takes Manhattan layers (points and axis-parallel edges), tile by tile
-    on the worker threads; on any other layer, or with tiles on a cluster, the subdivision builds it."""
-    if text in (None, "", "subdivision"):
-        return "subdivision"
-    if text == "sweep":
+    The sweep-line builder (the default) takes Manhattan layers (points and axis-parallel edges),
+    tile by tile on the worker threads; on any other layer, or with tiles on a cluster, the
+    subdivision builds it. subdivision: the subdivision always."""
+    if text in (None, "", "sweep"):
         return "sweep"
+    if text == "subdivision":
+        return "subdivision"
     raise UsageError("builder must be sweep or subdivision, not %r" % text)
 
 

@@ -206,8 +206,8 @@ LITHO_LABELS = {"": "none: the geometric score", "duv193": "duv193: ArF immersio
 
 
 # The diagram's construction (-rd builder): the same files either way.
-BUILDER_LABELS = {"subdivision": "subdivision: any layer, tiles on all cores",
-                  "sweep": "sweep line: Manhattan layers, faster"}
+BUILDER_LABELS = {"subdivision": "subdivision: every layer",
+                  "sweep": "sweep line: Manhattan layers, faster (others: the subdivision)"}
 # The independent check (-rd check): the same files either way.
 CHECK_LABELS = {"sample": "sampled: one piece in 16 searched for a closer site", "full": "full: every piece searched"}
 
@@ -275,7 +275,7 @@ class FlowDialog(pya.QDialog):
         self.builder = pya.QComboBox(self)
         for label in BUILDER_LABELS.values():
             self.builder.addItem(label)
-        self.builder.currentIndex = 1 if settings.get("builder") == "sweep" else 0
+        self.builder.currentIndex = 0 if settings.get("builder") == "subdivision" else 1
         form.addRow("Diagram builder", self.builder)
         self.check = pya.QComboBox(self)
         for label in CHECK_LABELS.values():

@@ -149,7 +149,7 @@ def columns_file():
 
 def compute(polygons, check=True, tooth_fraction=0.5, space_limit_widths=10.0, draw_layer=None,
             with_paths=False, tile=-1, csv_path=None, dbu=1.0, gauges_csv=None, draw_cell="VORONOI", threads=0,
-            progress=None, builder="subdivision"):
+            progress=None, builder="sweep"):
     """draw_layer: a layer number: also keep the diagram, drawable (Gauges.pieces_diagram, a
     diagram.Diagram with its GDSII file, see diagram.compute, also for draw_cell), so that a flow writes both
     without building the diagram twice. with_paths: each gauge's `stretch` is its stretch's

@@ -68,10 +68,10 @@ class Input:
     """The layer to work on: layout, cell, layer, its region and polygons (as drawn: the core
     merges them), where its files go (out: a Staging; dir: the output folder). The batch builds
     it from its arguments (from_args), the editor from the current view."""
-    def __init__(self, ly, cell, index, path, out, tile=-1, builder="subdivision", check="sample"):
+    def __init__(self, ly, cell, index, path, out, tile=-1, builder="sweep", check="sample"):
         self.ly, self.cell, self.index = ly, cell, index
         self.tile = tile  # the builder's tile side in DBU, 0 one tile, -1 automatic
-        self.builder = builder  # "subdivision" or "sweep" (arguments.parse_builder)
+        self.builder = builder  # "sweep" or "subdivision" (arguments.parse_builder)
         self.check = check  # "sample" or "full" (arguments.parse_check)
         info = ly.get_info(index)
         self.layer, self.datatype = info.layer, info.datatype

@@ -300,7 +300,7 @@ def run_flow():
             _warn("Layer %s is not in the layout." % values["layer"])
             raise _Stop()
         bar.start("reading the layer")
-        inp = Input(ly, cv.cell, index, cv.filename(), values["out"], builder=values.get("builder", "subdivision"),
+        inp = Input(ly, cv.cell, index, cv.filename(), values["out"], builder=values.get("builder", "sweep"),
                     check=values.get("check", "sample"))
         args = dict(values, modes="A,B,C", halves="0")
         try:
