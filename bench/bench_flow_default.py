@@ -3,9 +3,10 @@
 # alike), N runs each; best and median wall time, CPU time, bytes written, and the ratio.
 #   python3 bench/bench_flow_default.py FILE L/D MARKERS [--runs 3] [-- k=v ...]  (k=v: more -rd arguments)
 # e.g. python3 bench/bench_flow_default.py ../shared/data/iccad16/testcase3.oas 1000/0 ../shared/data/iccad16/test3.csv
-# "full" is the flow as it was before the default changed: every file (all_gauges=1, diagram=1),
-# the two-layouts experiment (halves=1) and every gauge up to 100,000 a type in the report
-# databases (rdb_max=100000, the old default). Threads: the batch's own, one builder thread per
+# "full" is the flow as it was before the defaults changed: every file (all_gauges=1, diagram=1),
+# the two-layouts experiment (halves=1), every gauge up to 100,000 a type in the report
+# databases (rdb_max=100000), the subdivision builder (builder=subdivision) and every piece
+# searched by the independent check (check=full), each the old default. Threads: the batch's own, one builder thread per
 # core (std::thread::hardware_concurrency), the same for both variants.
 import os
 import resource
@@ -18,7 +19,7 @@ import time
 repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 VARIANTS = {
     "default": [],
-    "full": ["all_gauges=1", "diagram=1", "halves=1", "rdb_max=100000"],
+    "full": ["all_gauges=1", "diagram=1", "halves=1", "rdb_max=100000", "builder=subdivision", "check=full"],
 }
 
 

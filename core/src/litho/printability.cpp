@@ -6,6 +6,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
@@ -261,6 +262,8 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
   const bool window = model.dose > 0;
   const double t = model.threshold;
   const double t_inner = t / ((1 - model.dose) * (1 - model.dose)), t_outer = t / ((1 + model.dose) * (1 + model.dose));
+  const LineKernels focused(kernels);
+  const std::unique_ptr<const LineKernels> defocused(model.defocus ? new LineKernels(*model.defocus) : nullptr);
   std::exception_ptr error;
   std::mutex error_lock;
   detail::parallel_for(reps.size(), threads, [&](unsigned, std::size_t k) {
@@ -270,12 +273,11 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
       const std::int64_t ox = origin(cx), oy = origin(cy);
       const std::vector<Polygon> clip = shapes.clip(ox, oy, W);
       const MaskSpectrum mask(clip, Window{{ox, oy}, half_dbu}, P, kernels.half());
-      const AerialImage image(kernels, mask);
       double dx = g.x2[i] - g.x1[i], dy = g.y2[i] - g.y1[i];
       const double len = std::hypot(dx, dy);
       dx /= len, dy /= len;
       const double px = (2 * cx - double(ox)) * half_dbu, py = (2 * cy - double(oy)) * half_dbu;
-      const LineProfile line(image, px, py, dx, dy);
+      const LineProfile line(focused, mask, px, py, dx, dy);
       const bool space = g.type[i] == kExternalGauge;
       const double drawn = g.cd[i] * dbu_nm;
       const Reading nominal = read(line, t, space, drawn);
@@ -288,8 +290,7 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
       // The inner corner: defocused at the low dose (the focus image for a dose-only window).
       Reading inner;
       if (model.defocus) {
-        const AerialImage blurred(*model.defocus, mask);
-        inner = read(LineProfile(blurred, px, py, dx, dy), t_inner, space, drawn);
+        inner = read(LineProfile(*defocused, mask, px, py, dx, dy), t_inner, space, drawn);
       } else {
         inner = read(line, t_inner, space, drawn);
       }

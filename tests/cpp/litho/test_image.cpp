@@ -115,6 +115,35 @@ TEST(AerialImage, LineProfilesAgreeWithPoints) {
   EXPECT_THROW(LineProfile(im, 0, 0, 0, 0), std::invalid_argument);
 }
 
+// The profile formed straight from the kernels and the mask (what printability reads, without
+// the image's fields) is the image's: along both axes both ways, at half-unit points, and
+// slanted (where it images the window itself), with a mask of more frequencies than the kernels.
+TEST(AerialImage, ProfilesFromKernelsAndMaskAreTheImages) {
+  const MaskSpectrum mask(clip(), Window{}, P, focus().half() + 3);
+  const AerialImage im(focus(), mask);
+  struct Line {
+    double px, py, dx, dy;
+  };
+  double scale = 0;
+  for (double t = -300; t <= 300; t += 50) scale = std::max(scale, im.at(1000 + t, 1000));
+  ASSERT_GT(scale, 0.1);
+  for (const Line& l : {Line{745, 1000, 1, 0}, Line{925.5, 980.25, 0, -1}, Line{1111, 777.5, -2, 0}, Line{830, 1222, 0, 5},
+                        Line{1000, 1000, 3, 4}}) {
+    const LineProfile direct(LineKernels(focus()), mask, l.px, l.py, l.dx, l.dy), via(im, l.px, l.py, l.dx, l.dy);
+    const double len = std::hypot(l.dx, l.dy);
+    for (double t = -300; t <= 300; t += 3.7) {
+      const double want = im.at(l.px + t * l.dx / len, l.py + t * l.dy / len);
+      ASSERT_NEAR(direct.at(t), want, 1e-12 * scale) << l.px << " " << l.py << " " << t;
+      ASSERT_NEAR(via.at(t), want, 1e-12 * scale) << l.px << " " << l.py << " " << t;
+    }
+  }
+  const LineKernels lk(focus());
+  EXPECT_THROW(LineProfile(lk, mask, 0, 0, 0, 0), std::invalid_argument);
+  EXPECT_THROW(LineProfile(lk, MaskSpectrum({}, Window{}, P, 10), 0, 0, 1, 0), std::invalid_argument);
+  EXPECT_THROW(LineProfile(lk, MaskSpectrum({}, Window{}, 1024, 17), 0, 0, 1, 0), std::invalid_argument);
+  EXPECT_THROW(LineKernels(Kernels{}), std::invalid_argument);
+}
+
 // The image of a clip equals the transformed image of each of its 8 transforms at matching
 // points. The tolerance is not a guess: for any mask, |I'(g(q)) - I(q)| <= ||T o g - T|| sum |c|^2
 // (the TCC's symmetry defect, measured from the kernels, times the mask's spectral energy);

@@ -4,6 +4,7 @@
 // same spectra, so the two agree to rounding.
 #pragma once
 #include <complex>
+#include <memory>
 #include <vector>
 
 #include "linf/litho/kernels.hpp"
@@ -42,19 +43,53 @@ class AerialImage {
   std::vector<std::complex<double>> fields_;  // kernel by kernel, n x n each, kx major
 };
 
-// The image along the line p + t d (d a unit vector), cheap to evaluate many times: along an
-// axis each field reduces once to a 1-D sum over 2 * half + 1 frequencies (the measurement
-// lines of a rectilinear layout); along another direction each point costs the full 2-D sum.
+// The image along the line p + t d (d a unit vector), cheap to evaluate many times. Along an
+// axis (the measurement lines of a rectilinear layout) each kernel's field on the line is a 1-D
+// sum over 2h + 1 frequencies, and the image, the weighted sum of their squared moduli, a real
+// trigonometric polynomial of degree 2h in t whose coefficients are formed once: a point then
+// costs 2h complex products whatever the number of kernels. Along another direction each point
+// costs the full 2-D sum of the image.
+// The kernels laid out for line profiles, made once a model: for a line along x and one along
+// y, each kernel's values with the frequency along the line contiguous, real and imaginary
+// parts apart, and for each frequency across the line the span of frequencies along it where
+// some kernel is not zero (the pupil's disc: a fifth of the square is zero). The loops over
+// them then run over plain arrays of doubles, which the compiler vectorises.
+class LineKernels {
+ public:
+  explicit LineKernels(const Kernels& kernels);
+  const Kernels& kernels() const { return *kernels_; }
+
+ private:
+  friend class LineProfile;
+  const Kernels* kernels_;
+  std::size_t n_;
+  // [axis][(i * n + b) * n + a]: kernel i at frequency a - h along the line, b - h across it;
+  // axis 0 a line along x, 1 along y.
+  std::vector<double> re_[2], im_[2];
+  std::vector<std::size_t> lo_[2], hi_[2];  // [axis][b]: the nonzero a are in [lo, hi)
+};
+
 class LineProfile {
  public:
   LineProfile(const AerialImage& image, double px, double py, double dx, double dy);
+  // The same profile straight from the kernels and the mask, without the image's fields (what a
+  // reading along an axis needs of a window: half the work of forming the fields first).
+  LineProfile(const LineKernels& kernels, const MaskSpectrum& mask, double px, double py, double dx, double dy);
   double at(double t) const;
 
  private:
-  const AerialImage& image_;
-  double px_, py_, dx_, dy_;
+  void direction(double dx, double dy);
+  // Folds each kernel's coefficients along the line (real and imaginary parts at [i * n + a],
+  // frequency a - h) into the polynomial's: g_[d] = sum_i w_i sum_a c_i(a + d) conj(c_i(a)).
+  void fold(const std::vector<double>& re, const std::vector<double>& im, const std::vector<double>& weights,
+            std::size_t n);
+
+  std::shared_ptr<const AerialImage> owned_;  // off an axis, built from kernels and mask
+  const AerialImage* image_ = nullptr;
+  double px_, py_, dx_ = 0, dy_ = 0;
   bool axis_ = false;
-  std::vector<std::complex<double>> line_;  // per kernel, 2 * half + 1 coefficients along t
+  double omega_ = 0;                    // 2 pi / P, signed by the direction along the axis
+  std::vector<std::complex<double>> g_;  // along an axis: I(t) = g_0 + 2 Re sum_d g_d exp(i omega d t), d = 0..2h
 };
 
 }  // namespace linf::litho
