@@ -2,7 +2,7 @@
 # generated wires (bench/flow_one.py's generator, here without KLayout), with what a cost model
 # needs: per-tile times on the workers, the submitting host's own share per tile, the bytes
 # moved, the scheduler's overhead per task, and each worker's peak memory.
-#   python3 bench/bench_dask.py [--wires 100000] [--workers 2] [--tile -1] [--overhead-tasks 2000]
+#   python3 bench/bench_dask.py [--wires 100000] [--workers 2] [--tile -1] [--overhead-tasks 2000] [--builder sweep]
 # Starts a dask-scheduler and --workers dask-workers (--nthreads 1) on 127.0.0.1 and stops them.
 # Both runs build the gauges (diagram + gauges, as cmd=gauges without its writers) with one
 # thread on the submitting host; the cluster's run must give the same voronoi.csv and gauges.csv
@@ -29,6 +29,9 @@ args = sys.argv[1:]
 
 def opt(name, default):
     return args[args.index(name) + 1] if name in args else default
+
+
+BUILDER = opt("--builder", "sweep")  # the batch's default; "subdivision" as the batch's -rd builder
 
 
 def wires(n, seed=1):
@@ -61,7 +64,7 @@ def free_port():
 def build(polys, out, tiles=None):
     t0 = time.perf_counter()
     r = core.gauges_polygons(polys, True, 2000, 1, tile=tile, csv=os.path.join(out, "voronoi.csv"), dbu=0.001,
-                             gauges_csv=os.path.join(out, "gauges.csv"), tiles=tiles)
+                             gauges_csv=os.path.join(out, "gauges.csv"), tiles=tiles, builder=BUILDER)
     return r, time.perf_counter() - t0
 
 
@@ -190,7 +193,7 @@ try:
 
     d_local, d_dask = r_local["diagram"], r_dask["diagram"]
     result = {
-        "wires": n, "sites": d_local["sites"], "workers": n_workers,
+        "wires": n, "sites": d_local["sites"], "workers": n_workers, "builder": d_dask["builder"],
         "tiles": d_dask["tiles"], "jobs": tiles.jobs,
         "local_seconds": t_local, "local_runs_seconds": [t_local_first, t_local_after], "dask_seconds": t_dask, "speedup": t_local / t_dask,
         "local_build_seconds": d_local["seconds"]["build"], "dask_build_seconds": d_dask["seconds"]["build"],
@@ -209,6 +212,7 @@ try:
     }
     result["projection"] = project(result, d_dask["tiles"]["tiles"])
     print(json.dumps(result))
+    print("builder: local %s, cluster %s" % (r_local["diagram"]["builder"], d_dask["builder"]))
     print("| wires | sites | tiles | local, 1 thread | 2 workers x 1 thread + host 1 thread | speed-up | same files | "
           "tile compute sum / mean / max | host per tile (plan+gather / classify+spill) | host after tiles | "
           "sent / received | task overhead (batch / round trip) | worker peak RSS |")

@@ -4,8 +4,8 @@
 # Starts a dask-scheduler on 127.0.0.1 (a free port) and two dask-workers (--nthreads 1, only the
 # build's core module on their PYTHONPATH), runs cmd=gauges and cmd=flow locally and on the
 # cluster with tiles of the layer's extent / parts, and compares every output file byte for byte
-# (JSON files with their timings and how the diagram was built left out: builder, tiles, the
-# check's worst_error).
+# (JSON files with their timings left out; summary.json's builder, tiles and check included:
+# the cluster's tiles are built by the local run's builder).
 # kill=1: one worker is SIGKILLed while it builds a tile, two seconds after the first tile
 # reached the cluster; the flow's files must still be the same.
 # faults=1: an unreachable scheduler gives one error line, exit 2, within 10 s and nothing
@@ -32,10 +32,6 @@ work = arg("work", "/tmp/linf_dask_check")
 MACRO = os.path.join(repo, "macros", "linf_opc.py")
 BUILD = os.path.join(repo, "build")
 TIMINGS = ("seconds", "elapsed", "time", "date")  # JSON keys that differ from run to run
-# How the diagram was built, not what it is: the cluster's tiles are the subdivision's, the
-# local run's the sweep's on a Manhattan layer (their tiles hold other sites, and the checker's
-# worst rounding error is over the builder's own pieces, before they are joined).
-BUILT = ("builder", "tiles", "worst_error")
 
 
 def free_port():
@@ -120,7 +116,7 @@ def untimed(v):
         # In stats.json's coverage rows (they have W_s), T is the selection's run time (the
         # thesis's T); elsewhere T is the gauge type and stays.
         return {k: untimed(x) for k, x in v.items()
-                if not (k == "T" and "W_s" in v) and not any(t in k.lower() for t in TIMINGS) and k not in BUILT}
+                if not (k == "T" and "W_s" in v) and not any(t in k.lower() for t in TIMINGS)}
     if isinstance(v, list):
         return [untimed(x) for x in v]
     return v

@@ -98,7 +98,7 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
                y2 = double(oy2 - origin.y);
   const double margin = std::floor(std::max({x2 - x1, y2 - y1, 64.0}) / 64) + 0.3125;
   const Box inner{x1 - margin, y1 - margin, x2 + margin, y2 + margin};
-  const bool sweep = opt.sweep && !runner;
+  const bool sweep = opt.sweep;
   const bool one_pass = !opt.far_field_pass || inner.x1 <= lclip.x1 || inner.y1 <= lclip.y1 ||
                         inner.x2 >= lclip.x2 || inner.y2 >= lclip.y2;
   if (sweep && (one_pass || opt.tile_size == 0)) {  // one tile: the whole layer in one sweep
@@ -147,7 +147,7 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
     sink(part, frame);
   };
   // The tiles here or by the runner (same parts, same order); the far field is built here.
-  if (runner) build_tiled_jobs(sites.sites, origin, inner, opt, tau, st, inner_sink, runner, progress);
+  if (runner) build_tiled_jobs(sites.sites, origin, inner, opt, tau, st, sweep ? swept_sink : inner_sink, runner, progress);
   else if (sweep) sweep_tiled(sites.sites, origin, inner, opt, tau, st, swept_sink, progress);
   else build_tiled(sites.sites, origin, inner, opt, tau, st, inner_sink, progress);
   // The border's owners, and the sites L-inf-tied with them there (far_field.hpp).

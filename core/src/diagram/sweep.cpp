@@ -253,21 +253,37 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
   return sweep_run(sites.sites, clip, nullptr, stats);
 }
 
-std::vector<Piece> sweep_part(const SiteList& sites, const std::vector<int>& ids, const Box& frame, const Box* hole) {
+namespace {
+
+// The sites `ids` as their own list (subset[k] is site ids[k]), ends renumbered, swept, and the
+// pieces told their global ids again (ascending ids: the order stays).
+template <class SiteAt>
+std::vector<Piece> sweep_own(const SiteAt& site_at, const std::vector<int>& ids, const Box& frame, const Box* hole) {
   auto local = [&](std::int32_t t) -> std::int32_t {
     const auto it = std::lower_bound(ids.begin(), ids.end(), t);
     return t >= 0 && it != ids.end() && *it == t ? std::int32_t(it - ids.begin()) : -1;
   };
   SiteList own;
   own.reserve(ids.size());
-  for (int t : ids) {
-    Site s = sites[t];
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    Site s = site_at(k);
     s.end0 = local(s.end0), s.end1 = local(s.end1);  // a point's ring neighbours may be absent
     own.push_back(s);
   }
   std::vector<Piece> part = sweep_run(own, frame, hole, nullptr);
-  for (Piece& p : part) p.a = ids[p.a], p.b = ids[p.b];  // ascending ids: the order stays
+  for (Piece& p : part) p.a = ids[p.a], p.b = ids[p.b];
   return part;
+}
+
+}  // namespace
+
+std::vector<Piece> sweep_part(const SiteList& sites, const std::vector<int>& ids, const Box& frame, const Box* hole) {
+  return sweep_own([&](std::size_t k) { return sites[ids[k]]; }, ids, frame, hole);
+}
+
+std::vector<Piece> sweep_subset(const std::vector<Site>& subset, const std::vector<int>& ids, const Box& frame) {
+  if (subset.size() != ids.size()) throw std::invalid_argument("sweep_subset: one site an id");
+  return sweep_own([&](std::size_t k) { return subset[k]; }, ids, frame, nullptr);
 }
 
 }  // namespace linf

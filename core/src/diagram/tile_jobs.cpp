@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "linf/diagram/sweep.hpp"
 #include "subdivision.hpp"
 #include "util/parallel.hpp"
 
@@ -161,6 +162,14 @@ TileResult decode_result(const std::string& bytes) {
 }
 
 TileResult build_job(const TileJob& job, int threads) {
+  if (job.opt.sweep) {  // the sweep's tile: its sites swept inside the frame, in layout coordinates
+    TileResult res;
+    res.frame = job.frame;
+    res.pieces = sweep_subset(job.sites, job.ids, job.frame);
+    res.stats.tiles = 1;
+    res.stats.largest_tile_sites = job.sites.size();
+    return res;
+  }
   // The model of the tile's sites alone, numbered 0..n-1 in global order, then told their
   // global ids: the same model, decisions and pieces as the local pass's over the whole list.
   SiteList own;

@@ -2,7 +2,9 @@
 //
 // A job holds only its tile's sites (its own and its halo's, ascending global ids, layout
 // coordinates), the tile's task boxes with each task's halo (local ids), and what the whole
-// layer fixes: the origin, the root box, tau and the build options. Built from the job alone
+// layer fixes: the origin, the root box, tau and the build options. A sweep's job
+// (opt.sweep) holds the sites sweep_tiled gives its tile, its frame in layout coordinates and
+// no tasks; its result is sweep_part's, in layout coordinates. Built from the job alone
 // (build_tile_job), a tile gives bit for bit the pieces it gives in the local pass: the model
 // sees the same sites in the same order, shifted by the same origin, with the same tau.
 //

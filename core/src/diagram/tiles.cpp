@@ -477,7 +477,10 @@ void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, co
 void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt,
                       double tau, BuildStats& st, const PartSink& sink, const TileRunner& runner,
                       const ProgressFn& progress) {
-  Plan plan(sites, origin, root, opt, tau);
+  // The sweep's tiles as sweep_tiled gathers them (its finer plan, a frame in layout
+  // coordinates, no tasks); the subdivision's with their tasks and halos.
+  const bool sweep = opt.sweep;
+  Plan plan(sites, origin, root, opt, tau, sweep);
   std::vector<std::vector<int>> halo;
   std::size_t next_tile = 0;  // row by row, as the local pass
   const std::size_t count = plan.ntiles * plan.ntiles;
@@ -487,16 +490,20 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
       const std::size_t tj = next_tile / plan.ntiles, ti = next_tile % plan.ntiles;
       ++next_tile;
       TileJob job;
-      job.ids = plan.gather_tile(tj, ti, halo);
+      job.ids = sweep ? plan.sweep_sites(tj, ti, 0) : plan.gather_tile(tj, ti, halo);
       if (job.ids.size() < 2) {  // as the local pass: no pieces
         meter.step();
         continue;
       }
       job.opt = opt;
       job.origin = origin, job.root = root, job.frame = plan.frame(tj, ti), job.tau = tau;
+      if (sweep)
+        job.frame = {job.frame.x1 + double(origin.x), job.frame.y1 + double(origin.y), job.frame.x2 + double(origin.x),
+                     job.frame.y2 + double(origin.y)};
       job.sites.reserve(job.ids.size());
       for (int t : job.ids) job.sites.push_back(sites[t]);
-      for (std::size_t k = 0; k < plan.per * plan.per; ++k) job.tasks.push_back(plan.tasks[plan.task_of(tj, ti, k)]);
+      if (!sweep)
+        for (std::size_t k = 0; k < plan.per * plan.per; ++k) job.tasks.push_back(plan.tasks[plan.task_of(tj, ti, k)]);
       job.halos = std::move(halo);
       halo.clear();
       bytes = encode_job(job);
@@ -516,7 +523,7 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
     ++received;
     meter.step();
     st.tiles += r.stats.tiles;
-    st.tasks += r.stats.tasks;
+    st.tasks += sweep ? plan.per * plan.per : r.stats.tasks;  // as sweep_tiled counts them
     st.largest_tile_sites = std::max(st.largest_tile_sites, r.stats.largest_tile_sites);
     add_work(work, r.stats);
     sink(r.pieces, r.frame);

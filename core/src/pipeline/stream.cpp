@@ -163,7 +163,7 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
     runs.add(part);
   };
   BuildOptions build = opt.build;
-  build.sweep = d.swept = opt.sweep && !tiles && sweep_handles(d.sites);  // a cluster's tiles: the subdivision
+  build.sweep = d.swept = opt.sweep && sweep_handles(d.sites);  // a cluster's tiles too (tile_jobs.hpp)
   build_parts(d.sites, d.clip, build, &st, take, tiles, opt.progress);
   d.seconds_build = since(t0) - t_stretches;
   d.tiles = st.tiles, d.tile_tasks = st.tasks, d.largest_tile_sites = st.largest_tile_sites;

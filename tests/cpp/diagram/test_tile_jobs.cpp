@@ -116,9 +116,46 @@ TEST(TileJobs, SamePartsInTheSameOrderAsTheLocalPass) {
   }
 }
 
+// The sweep's tiles as jobs (opt.sweep): each job carries the sites sweep_tiled gives its tile
+// and is swept alone from its bytes, with the same parts in the same order as the local sweep,
+// and the same counts.
+TEST(TileJobs, SweepJobsGiveTheLocalSweepsParts) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    const Sites s = sites_of_polygons(merge_polygons(block(seed, linf::testing::Style::Rectilinear, 12, 10)));
+    const Box clip = clip_box(s);
+    const double side = std::max(clip.x2 - clip.x1, clip.y2 - clip.y1) / 3;
+    for (double frac : {0.3, 0.05}) {
+      BuildOptions o;
+      o.sweep = true;
+      o.threads = 2;
+      o.tile_size = frac * side;
+      BuildStats st_local, st_jobs;
+      const std::vector<std::string> local = parts(s, clip, o, {}, &st_local);
+      Inline run{1, {}};
+      const std::vector<std::string> got = parts(s, clip, o, run.runner(), &st_jobs);
+      const std::string at = "seed " + std::to_string(seed) + " tile " + std::to_string(o.tile_size);
+      ASSERT_GT(run.jobs.size(), frac == 0.05 ? 4u : 1u) << at;
+      ASSERT_EQ(got.size(), local.size()) << at;
+      for (std::size_t i = 0; i < got.size(); ++i) ASSERT_TRUE(got[i] == local[i]) << at << ": part " << i;
+      EXPECT_EQ(st_jobs.tiles, st_local.tiles) << at;
+      EXPECT_EQ(st_jobs.tasks, st_local.tasks) << at;
+      EXPECT_EQ(st_jobs.largest_tile_sites, st_local.largest_tile_sites) << at;
+      for (const std::string& bytes : run.jobs) {
+        const detail::TileJob job = detail::decode_job(bytes);
+        EXPECT_TRUE(job.opt.sweep) << at;
+        EXPECT_TRUE(job.tasks.empty()) << at;
+        EXPECT_LT(job.sites.size(), s.sites.size()) << at;
+      }
+    }
+  }
+}
+
 TEST(TileJobs, StreamFedByJobsWritesTheSameBytes) {
-  const std::vector<Polygon> polys = block(4, linf::testing::Style::Octilinear, 10, 8);
+ for (const bool sweep : {false, true}) {
+  // The subdivision on an octilinear block; the sweep (Manhattan layers) on a rectilinear one.
+  const std::vector<Polygon> polys = block(4, sweep ? linf::testing::Style::Rectilinear : linf::testing::Style::Octilinear, 10, 8);
   DiagramOptions o;
+  o.sweep = sweep;
   o.build.threads = 2;
   o.build.tile_size = 150;
   auto run = [&](const TileRunner& runner, const std::string& name, std::string& csv, std::string& gds) {
@@ -152,6 +189,9 @@ TEST(TileJobs, StreamFedByJobsWritesTheSameBytes) {
     ASSERT_EQ(a.length, b.length);
     ASSERT_EQ(a.path.size(), b.path.size());
   }
+  EXPECT_EQ(got.diagram.swept, sweep);
+  EXPECT_EQ(local.diagram.swept, sweep);
+ }
 }
 
 TEST(TileJobs, MalformedBytesAndLostTilesAreRefused) {

@@ -31,4 +31,8 @@ std::vector<Piece> sweep_pieces(const Sites& sites, const Box& clip, SweepStats*
 std::vector<Piece> sweep_part(const SiteList& sites, const std::vector<int>& ids, const Box& frame,
                               const Box* hole = nullptr);
 
+// The same part from the sites `ids` alone (subset[k] is site ids[k], its segment ends still
+// global ids): what a tile job carries (tile_jobs.hpp). The same pieces as sweep_part.
+std::vector<Piece> sweep_subset(const std::vector<Site>& subset, const std::vector<int>& ids, const Box& frame);
+
 }  // namespace linf
