@@ -1,13 +1,16 @@
 # The diagram's tiles on a Dask cluster (-rd scheduler=...) give the local run's files.
 #   klayout -b -r tests/klayout/check_dask.py -rd input=FILE -rd layer=L/D -rd markers=SPEC [-rd cell=NAME]
-#           -rd work=DIR [-rd parts=4] [-rd kill=1] [-rd faults=1] [-rd editor=1]
+#           -rd work=DIR [-rd parts=4] [-rd kill=1] [-rd kill_parts=32] [-rd faults=1] [-rd editor=1]
 # Starts a dask-scheduler on 127.0.0.1 (a free port) and two dask-workers (--nthreads 1, only the
 # build's core module on their PYTHONPATH), runs cmd=gauges and cmd=flow locally and on the
 # cluster with tiles of the layer's extent / parts, and compares every output file byte for byte
 # (JSON files with their timings left out; summary.json's builder, tiles and check included:
 # the cluster's tiles are built by the local run's builder).
-# kill=1: one worker is SIGKILLed while it builds a tile, two seconds after the first tile
-# reached the cluster; the flow's files must still be the same.
+# kill=1: one worker is SIGKILLed while it builds a tile, at least two seconds into the run; the
+# flow's files must still be the same. The run has tiles of the extent / kill_parts: smaller
+# ones, so that the tiles last past two seconds (the sweep builds them fast); the files do not
+# depend on the tile size, but summary.json's tile counts and the check's worst rounding and
+# pairs (drawn from a sample of each tile's clearances).
 # faults=1: an unreachable scheduler gives one error line, exit 2, within 10 s and nothing
 # written; a worker without the core module gives an error naming it.
 # editor=1: the editor's path (the core in its worker process, which connects to the cluster)
@@ -111,18 +114,18 @@ def run(cmd, out, extra=(), background=False):
     return subprocess.run(args, capture_output=True, text=True, env=env, timeout=1200)
 
 
-def untimed(v):
+def untimed(v, ignore=()):
     if isinstance(v, dict):
         # In stats.json's coverage rows (they have W_s), T is the selection's run time (the
         # thesis's T); elsewhere T is the gauge type and stays.
-        return {k: untimed(x) for k, x in v.items()
-                if not (k == "T" and "W_s" in v) and not any(t in k.lower() for t in TIMINGS)}
+        return {k: untimed(x, ignore) for k, x in v.items()
+                if not (k == "T" and "W_s" in v) and not any(t in k.lower() for t in TIMINGS) and k not in ignore}
     if isinstance(v, list):
-        return [untimed(x) for x in v]
+        return [untimed(x, ignore) for x in v]
     return v
 
 
-def same_files(ref, got, what):
+def same_files(ref, got, what, ignore=()):
     names = sorted(os.listdir(ref))
     expect(names == sorted(os.listdir(got)), "%s: the same files (%s against %s)"
            % (what, names, sorted(os.listdir(got))))
@@ -133,7 +136,7 @@ def same_files(ref, got, what):
             continue
         if name.endswith(".json"):
             with open(a) as f, open(b) as g:
-                same = untimed(json.load(f)) == untimed(json.load(g))
+                same = untimed(json.load(f), ignore) == untimed(json.load(g), ignore)
         elif name.endswith(".html"):  # the report states its run's timings
             same = True
         else:
@@ -204,26 +207,28 @@ try:
                    "the editor gets a UsageError for an unreachable scheduler: %s: %s" % (type(e).__name__, e))
 
     if arg("kill", "0") == "1":
-        # SIGKILL to worker main-0 while it builds a tile, two seconds after the first tile
-        # reached the cluster (KLayout's start and the reading come first).
+        # SIGKILL to worker main-0 while it builds a tile, at least two seconds into the run
+        # (KLayout's start and the reading come first).
         import distributed
         got = os.path.join(work, "flow_killed")
+        small = "%.4f" % (max(box.width(), box.height()) / float(arg("kill_parts", "32")))
         watch = distributed.Client(address, timeout=30, set_as_default=False)
         victim = [a for a, w in watch.scheduler_info()["workers"].items() if w.get("name") == "main-0"][0]
-        p = run("flow", got, ["-rd", "tile=" + tile, "-rd", "scheduler=" + address], background=True)
+        started_at = time.time()
+        p = run("flow", got, ["-rd", "tile=" + small, "-rd", "scheduler=" + address], background=True)
         first, killed = None, False
         while p.poll() is None and not killed:
             busy = watch.processing()
             tiles = {w: [k for k in keys if str(k).startswith("linf-tile")] for w, keys in busy.items()}
             if first is None and any(tiles.values()):
                 first = time.time()
-            if first is not None and time.time() - first >= 2 and tiles.get(victim):
+            if first is not None and time.time() - started_at >= 2 and tiles.get(victim):
                 signal_group(workers[0], signal.SIGKILL)  # the worker and its nanny: no restart
                 workers[0].wait()
                 killed = True
-                print("killed worker main-0 %.1f s after the first tile, while it built %s"
-                      % (time.time() - first, tiles[victim][0]))
-            time.sleep(0.05)
+                print("killed worker main-0 %.1f s into the run, %.1f s after the first tile, while it built %s"
+                      % (time.time() - started_at, time.time() - first, tiles[victim][0]))
+            time.sleep(0.02)
         watch.close()
         out, err = p.communicate(timeout=1200)
         print("flow with a worker killed: exit %d %s" % (p.returncode, (err or out).strip()[-300:]))
@@ -232,7 +237,8 @@ try:
         noise = [l for l in err.splitlines() if not l.startswith("linf_opc: warning: the marker layer")]
         expect(not noise, "a lost worker says nothing on stderr (Dask reran its tiles): %r" % noise[:3])
         if p.returncode == 0:
-            same_files(os.path.join(work, "flow_local"), got, "flow with a worker killed")
+            same_files(os.path.join(work, "flow_local"), got, "flow with a worker killed",
+                       ("tiles", "worst_error", "pairs_separated"))
 
     if arg("faults", "0") == "1":
         # KLayout's own start, for scale: a run that stops at its first argument (on a busy
