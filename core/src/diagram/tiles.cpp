@@ -217,6 +217,12 @@ class Plan {
     f.x2 = last.x2, f.y2 = last.y2;
     return f;
   }
+  // The same frame in layout coordinates, where the sweep works.
+  Box layout_frame(std::size_t tj, std::size_t ti) const {
+    const Box f = frame(tj, ti);
+    const double ox = double(origin_.x), oy = double(origin_.y);
+    return {f.x1 + ox, f.y1 + oy, f.x2 + ox, f.y2 + oy};
+  }
   // The tile's sites for the sweep (safe on several threads, each with its own `worker`). A
   // site that owns a point p of the frame F and does not meet F is an L-inf nearest site, tied
   // or not, at the point q where the segment from p to the site's nearest point leaves F (as in
@@ -416,7 +422,6 @@ void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, co
   Plan plan(sites, origin, root, opt, tau, true);
   const std::size_t count = plan.ntiles * plan.ntiles;
   const unsigned nw = worker_count(count, opt.threads);
-  const double ox = double(origin.x), oy = double(origin.y);
   ProgressMeter meter(progress, "building the diagram", count);
   // Each worker takes the next tile, gathers its sites and sweeps it; whoever finds the next
   // tile in order ready hands it and those after it to the sink, one thread at a time. At most
@@ -442,8 +447,7 @@ void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, co
       }
       const std::size_t tj = i / plan.ntiles, ti = i % plan.ntiles;
       const std::vector<int> ids = plan.sweep_sites(tj, ti, w);
-      const Box f = plan.frame(tj, ti);
-      Slot done{true, ids.size(), {f.x1 + ox, f.y1 + oy, f.x2 + ox, f.y2 + oy}, {}};
+      Slot done{true, ids.size(), plan.layout_frame(tj, ti), {}};
       if (ids.size() >= 2) done.part = sweep_part(sites, ids, done.frame);
       meter.step();
       std::unique_lock<std::mutex> lock(m);
@@ -496,10 +500,8 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
         continue;
       }
       job.opt = opt;
-      job.origin = origin, job.root = root, job.frame = plan.frame(tj, ti), job.tau = tau;
-      if (sweep)
-        job.frame = {job.frame.x1 + double(origin.x), job.frame.y1 + double(origin.y), job.frame.x2 + double(origin.x),
-                     job.frame.y2 + double(origin.y)};
+      job.origin = origin, job.root = root, job.tau = tau;
+      job.frame = sweep ? plan.layout_frame(tj, ti) : plan.frame(tj, ti);
       job.sites.reserve(job.ids.size());
       for (int t : job.ids) job.sites.push_back(sites[t]);
       if (!sweep)

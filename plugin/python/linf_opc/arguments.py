@@ -25,7 +25,7 @@ def parse_tile(text, dbu):
 def parse_builder(text):
     """-rd builder=sweep|subdivision: the diagram's construction (the same diagram either way).
     The sweep-line builder (the default) takes Manhattan layers (points and axis-parallel edges),
-    tile by tile on the worker threads; on any other layer, or with tiles on a cluster, the
+    tile by tile on the worker threads or a cluster's workers; on any other layer the
     subdivision builds it. subdivision: the subdivision always."""
     if text in (None, "", "sweep"):
         return "sweep"
