@@ -10,6 +10,7 @@
 #include "bind.hpp"
 #include "convert.hpp"
 #include "linf/gauges/context.hpp"
+#include "linf/gauges/neighbours.hpp"
 #include "linf/gauges/gauge.hpp"
 #include "linf/io/csv.hpp"
 #include "linf/io/gauge_table.hpp"
@@ -73,6 +74,7 @@ void bind_gauges(py::module_& m) {
         GaugeOptions o;
         o.tooth_fraction = tooth_fraction;
         o.space_limit_widths = space_limit;
+        o.threads = threads;
         const ProgressFn told = progress_of(progress);
         auto stage = [&](const char* name) {
           if (told) told(name, 0, 0);
@@ -169,6 +171,36 @@ void bind_gauges(py::module_& m) {
       "symmetries of the square, hashed. polygons: as gauges_polygons takes them; points: array('d') x0, y0,\n"
       "x1, y1, ... in DBU (rounded to the nearest half DBU); radius in DBU (rounded to an integer, >= 1).\n"
       "Returns bytes: one unsigned 64-bit id per point, little-endian (array('Q', ...) on this platform).");
+
+  m.def(
+      "neighbour_spaces",
+      [](const py::buffer& x, const py::buffer& y, const py::buffer& cd, const py::buffer& types, const py::buffer& asked,
+         double radius, int threads) {
+        const Column<double> cx = column_of<double>(x, "x"), cy = column_of<double>(y, "y"), c = column_of<double>(cd, "cd");
+        const Column<std::int32_t> t = column_of<std::int32_t>(types, "types"), a = column_of<std::int32_t>(asked, "asked");
+        if (cy.size() != cx.size() || c.size() != cx.size() || t.size() != cx.size())
+          throw py::value_error("x, y, cd and types must be columns of the same gauges");
+        std::vector<SpacePoint> g(cx.size());
+        for (std::size_t i = 0; i < g.size(); ++i) {
+          if (t[i] < 0 || t[i] > int(GaugeType::T)) throw py::value_error("a gauge type index out of range");
+          g[i] = {cx[i], cy[i], c[i], GaugeType(t[i])};
+        }
+        std::vector<std::int32_t> which(a.size());
+        for (std::size_t i = 0; i < which.size(); ++i) which[i] = a[i];
+        std::vector<double> spaces;
+        {
+          py::gil_scoped_release unlocked;
+          spaces = neighbouring_spaces(g, which, radius, threads);
+        }
+        return bytes_of(spaces);
+      },
+      py::arg("x"), py::arg("y"), py::arg("cd"), py::arg("types"), py::arg("asked"), py::arg("radius"),
+      py::arg("threads") = 0,
+      "Neighbouring spaces of gauges (docs/design.md, 'Split rules'): for each index of `asked` (array('i')),\n"
+      "the least cd among the other kind's gauges (external for a width gauge, internal for an external\n"
+      "one) whose points lie within `radius` DBU (L-infinity) of its point; NaN where there is none. x, y, cd:\n"
+      "double columns, types: int32 indices (internal, external, sandwich, comb, T), one entry a gauge\n"
+      "(the gauge table's column views). Returns bytes: one double per asked gauge (array('d')).");
 }
 
 }  // namespace linf::bind

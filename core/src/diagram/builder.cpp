@@ -75,6 +75,19 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
 
 void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
                  const PartSink& sink, const TileRunner& runner, const ProgressFn& progress) {
+  build_parts(sites, clip, opt, stats, PartPrepare{},
+              [&](std::vector<Piece>& part, const Box& frame, std::any&) { sink(part, frame); }, runner, progress);
+}
+
+void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
+                 const PartPrepare& prepare, const PreparedSink& prepared_sink, const TileRunner& runner,
+                 const ProgressFn& progress) {
+  // Where a part is not prepared on the thread that built it, it is prepared here.
+  const PartSink sink = [&](std::vector<Piece>& part, const Box& frame) {
+    std::any prepared;
+    if (prepare) prepared = prepare(part, frame);
+    prepared_sink(part, frame, prepared);
+  };
   if (sites.sites.size() < 2) return;
   Coord ox1 = INT64_MAX, oy1 = INT64_MAX, ox2 = INT64_MIN, oy2 = INT64_MIN;
   for (const Site& t : sites.sites) {
@@ -146,9 +159,14 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
     note_border(part, o);
     sink(part, frame);
   };
+  // The sweep's tiles come prepared (on the threads that swept them).
+  const PreparedSink swept_prepared = [&](std::vector<Piece>& part, const Box& frame, std::any& prepared) {
+    note_border(part, o);
+    prepared_sink(part, frame, prepared);
+  };
   // The tiles here or by the runner (same parts, same order); the far field is built here.
   if (runner) build_tiled_jobs(sites.sites, origin, inner, opt, tau, st, sweep ? swept_sink : inner_sink, runner, progress);
-  else if (sweep) sweep_tiled(sites.sites, origin, inner, opt, tau, st, swept_sink, progress);
+  else if (sweep) sweep_tiled(sites.sites, origin, inner, opt, tau, st, prepare, swept_prepared, progress);
   else build_tiled(sites.sites, origin, inner, opt, tau, st, inner_sink, progress);
   // The border's owners, and the sites L-inf-tied with them there (far_field.hpp).
   std::vector<int> near = far_field_sites(sites.sites, origin, inner, marks);

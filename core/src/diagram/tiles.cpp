@@ -418,7 +418,7 @@ void build_tiled(const SiteList& sites, const Point& origin, const Box& root, co
 }
 
 void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt, double tau,
-                 BuildStats& st, const PartSink& sink, const ProgressFn& progress) {
+                 BuildStats& st, const PartPrepare& prepare, const PreparedSink& sink, const ProgressFn& progress) {
   Plan plan(sites, origin, root, opt, tau, true);
   const std::size_t count = plan.ntiles * plan.ntiles;
   const unsigned nw = worker_count(count, opt.threads);
@@ -432,6 +432,7 @@ void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, co
     std::size_t sites = 0;
     Box frame;
     std::vector<Piece> part;
+    std::any prepared;
   };
   std::vector<Slot> slots(window);
   std::mutex m;
@@ -447,8 +448,11 @@ void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, co
       }
       const std::size_t tj = i / plan.ntiles, ti = i % plan.ntiles;
       const std::vector<int> ids = plan.sweep_sites(tj, ti, w);
-      Slot done{true, ids.size(), plan.layout_frame(tj, ti), {}};
-      if (ids.size() >= 2) done.part = sweep_part(sites, ids, done.frame);
+      Slot done{true, ids.size(), plan.layout_frame(tj, ti), {}, {}};
+      if (ids.size() >= 2) {
+        done.part = sweep_part(sites, ids, done.frame);
+        if (prepare) done.prepared = prepare(done.part, done.frame);
+      }
       meter.step();
       std::unique_lock<std::mutex> lock(m);
       slots[i % window] = std::move(done);
@@ -462,7 +466,7 @@ void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, co
           ++st.tiles;
           st.tasks += plan.per * plan.per;
           st.largest_tile_sites = std::max(st.largest_tile_sites, s.sites);
-          sink(s.part, s.frame);
+          sink(s.part, s.frame, s.prepared);
         }
         lock.lock();
         ++delivered;

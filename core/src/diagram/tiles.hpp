@@ -30,10 +30,11 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
 
 // The same tiles built by the sweep-line builder (opt.sweep): a tile's sites, the union of its
 // tasks' halos and every segment's end sites, swept at once and cut to the tile's frame; as
-// many tiles swept side by side as there are threads, handed to `sink` one at a time and in
-// order. Pieces and frames in layout coordinates (the frames, dyadic, shift exactly), so the
-// sweep's vertices reach the sink as it computed them.
+// many tiles swept side by side as there are threads, each prepared (`prepare`, if set) on the
+// thread that swept it, handed to `sink` one at a time and in order. Pieces and frames in layout
+// coordinates (the frames, dyadic, shift exactly), so the sweep's vertices reach the sink as it
+// computed them.
 void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt, double tau,
-                 BuildStats& st, const PartSink& sink, const ProgressFn& progress = {});
+                 BuildStats& st, const PartPrepare& prepare, const PreparedSink& sink, const ProgressFn& progress = {});
 
 }  // namespace linf::detail

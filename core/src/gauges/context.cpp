@@ -3,7 +3,7 @@
 // lie at -2r and 2r. The clipped geometry is described by its boundary: the layer's edges
 // inside the window, each directed with the layer on its left, and the parts of the window's
 // own sides that lie in the layer. That set of directed segments depends on the region alone
-// (not on where a ring starts nor on how a clipper walks), so sorting it gives a canonical form.
+// (not on where a ring starts nor on how a clipper walks), so a sum of its segments' hashes names it.
 // Edges are cut where they cross the window's sides: an any-angle edge crosses at a rational
 // point, kept exactly as a reduced fraction.
 #include "linf/gauges/context.hpp"
@@ -12,7 +12,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "util/parallel.hpp"
 
@@ -105,10 +107,10 @@ class Window {
     for (Side& s : sides_) s.at.clear(), s.odd_before = false;
   }
 
-  // A ring relative to the point, oriented with the layer on its left.
-  void ring(const std::vector<P>& v) {
-    const std::size_t n = v.size();
-    for (std::size_t i = 0; i < n; ++i) edge(v[i], v[(i + 1) % n]);
+  // An edge relative to the point, the layer on its left.
+  void edge(P a, P b) {
+    clip(a, b);
+    for (int k = 0; k < 4; ++k) cross(k, to_bottom(k, a), to_bottom(k, b));
   }
 
   // The boundary's segments: the edges' pieces inside, then the sides' parts in the layer.
@@ -118,11 +120,6 @@ class Window {
   }
 
  private:
-  void edge(P a, P b) {
-    clip(a, b);
-    for (int k = 0; k < 4; ++k) cross(k, to_bottom(k, a), to_bottom(k, b));
-  }
-
   // The piece of a -> b in the closed window, unless it lies along a side (the sides' part in
   // the layer is found from inside, by cross(), once for all polygons).
   void clip(P a, P b) {
@@ -250,17 +247,10 @@ struct Hash {
   }
 };
 
-// The eight encodings of one neighbourhood (one a symmetry of the square; a mirror reverses the
-// segments so that the region stays on their left), each the segments in one fixed order:
-// segments of integer points (all of them on Manhattan and 45-degree layers) by one 128-bit key
-// of their coordinates, then the others by their eight integers.
-using Key = unsigned __int128;
-constexpr Key kRational = Key(1) << 127;  // above every integer key: coordinates are below 2^30
-
-// A segment under symmetry t.
+// A segment under symmetry t of the square (a mirror reverses it, so that the region stays on
+// its left), as its eight integers.
 Code code_of(const Seg& s, int t) {
   const bool swap = t & 1, negx = t & 2, negy = t & 4;
-  const bool mirror = (int(swap) + int(negx) + int(negy)) % 2 == 1;
   auto map = [&](Q x, Q y) {
     if (swap) std::swap(x, y);
     if (negx) x = neg(x);
@@ -269,101 +259,57 @@ Code code_of(const Seg& s, int t) {
   };
   auto [x1, y1] = map(s.x1, s.y1);
   auto [x2, y2] = map(s.x2, s.y2);
-  if (mirror) std::swap(x1, x2), std::swap(y1, y2);
+  if ((int(swap) + int(negx) + int(negy)) % 2 == 1) std::swap(x1, x2), std::swap(y1, y2);
   return code_of({x1, y1, x2, y2});
 }
 
-// The keys of one segment under the eight symmetries, as key_of(code_of(s, t)), from its integer
-// ends directly where it has them (every segment of a Manhattan or 45-degree layer).
-void keys_of(const Seg& s, Key* keys) {
-  if (s.x1.q != 1 || s.y1.q != 1 || s.x2.q != 1 || s.y2.q != 1) {
-    for (int t = 0; t < 8; ++t) keys[t] = kRational;
+// MurmurHash3's 64-bit finaliser: a bijection in which every input bit reaches every output bit.
+std::uint64_t fmix(std::uint64_t x) {
+  x ^= x >> 33, x *= 0xff51afd7ed558ccdull, x ^= x >> 33, x *= 0xc4ceb9fe1a85ec53ull, x ^= x >> 33;
+  return x;
+}
+
+std::uint64_t mixed(const std::int64_t* v, int n) {
+  Hash h;
+  for (int i = 0; i < n; ++i) h.add(v[i]);
+  return h.value();
+}
+
+// Adds a segment's hash under each of the 8 symmetries to its sum: from its ends' four integers
+// when it has integer ends (every segment of a Manhattan or 45-degree layer), else from its eight
+// integers, fully mixed either way.
+void hashes_of(const Seg& s, std::array<std::uint64_t, 8>& sums) {
+  if (s.x1.q == 1 && s.y1.q == 1 && s.x2.q == 1 && s.y2.q == 1) {
+    // The ends' coordinates are below 2^29 in size: 32 bits each, two to a word; the two words
+    // combined through an odd multiplier and mixed (one finaliser a segment and symmetry).
+    auto u = [](std::int64_t v) { return std::uint64_t(std::uint32_t(v + (std::int64_t(1) << 30))); };
+    for (int t = 0; t < 8; ++t) {
+      const bool swap = t & 1, negx = t & 2, negy = t & 4;
+      std::int64_t x1 = s.x1.p, y1 = s.y1.p, x2 = s.x2.p, y2 = s.y2.p;
+      if (swap) std::swap(x1, y1), std::swap(x2, y2);
+      if (negx) x1 = -x1, x2 = -x2;
+      if (negy) y1 = -y1, y2 = -y2;
+      if ((int(swap) + int(negx) + int(negy)) % 2 == 1) std::swap(x1, x2), std::swap(y1, y2);
+      sums[std::size_t(t)] += fmix((u(x1) << 32 | u(y1)) + (u(x2) << 32 | u(y2)) * 0x9E3779B97F4A7C15ull);
+    }
     return;
   }
-  auto u = [](std::int64_t v) { return Key(std::uint32_t(v + (std::int64_t(1) << 30))); };
   for (int t = 0; t < 8; ++t) {
-    const bool swap = t & 1, negx = t & 2, negy = t & 4;
-    std::int64_t x1 = s.x1.p, y1 = s.y1.p, x2 = s.x2.p, y2 = s.y2.p;
-    if (swap) std::swap(x1, y1), std::swap(x2, y2);
-    if (negx) x1 = -x1, x2 = -x2;
-    if (negy) y1 = -y1, y2 = -y2;
-    if ((int(swap) + int(negx) + int(negy)) % 2 == 1) std::swap(x1, x2), std::swap(y1, y2);
-    keys[t] = u(x1) << 96 | u(y1) << 64 | u(x2) << 32 | u(y2);
+    const Code c = code_of(s, t);
+    sums[std::size_t(t)] += mixed(c.data(), 8);
   }
 }
 
-struct Entry {
-  Key key;
-  std::uint32_t seg;
-};
-
-struct Encodings {
-  const std::vector<Seg>* segs = nullptr;
-  std::vector<std::array<Key, 8>> keys;  // per segment, per symmetry
-  std::array<std::vector<Entry>, 8> order;
-
-  bool before(int s, const Entry& a, int t, const Entry& b) const {
-    if (a.key != b.key) return a.key < b.key;
-    return a.key == kRational && code_of((*segs)[a.seg], s) < code_of((*segs)[b.seg], t);
-  }
-  void sort(int t) {
-    auto& o = order[std::size_t(t)];
-    o.clear();
-    for (std::uint32_t i = 0; i < keys.size(); ++i) o.push_back({keys[i][std::size_t(t)], i});
-    std::sort(o.begin(), o.end(), [&](const Entry& a, const Entry& b) { return before(t, a, t, b); });
-  }
-  // Sorted encodings s before t, lexicographically.
-  bool less(int s, int t) const {
-    const auto &a = order[std::size_t(s)], &b = order[std::size_t(t)];
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      if (before(s, a[i], t, b[i])) return true;
-      if (before(t, b[i], s, a[i])) return false;
-    }
-    return false;
-  }
-};
-
-// The least of the eight sorted encodings, hashed with R. Only the encodings whose least segment
-// is the least of all are sorted: one, unless the neighbourhood has symmetries itself.
-std::uint64_t canonical_id(const std::vector<Seg>& segs, std::int64_t R, Encodings& e) {
-  const std::size_t n = segs.size();
-  e.segs = &segs;
-  e.keys.resize(n);
-  for (std::size_t i = 0; i < n; ++i) keys_of(segs[i], e.keys[i].data());
-  int best = 0;
-  if (n > 0) {
-    // Each symmetry's least segment, found from the keys; a tie of rational keys by their codes.
-    std::array<Entry, 8> least;
-    for (int t = 0; t < 8; ++t) {
-      Entry m{e.keys[0][std::size_t(t)], 0};
-      for (std::uint32_t i = 1; i < n; ++i) {
-        const Entry x{e.keys[i][std::size_t(t)], i};
-        if (e.before(t, x, t, m)) m = x;
-      }
-      least[std::size_t(t)] = m;
-      if (e.before(t, m, best, least[std::size_t(best)])) best = t;
-    }
-    bool sorted = false;
-    for (int t = 0; t < 8; ++t) {
-      if (t == best || e.before(best, least[std::size_t(best)], t, least[std::size_t(t)])) continue;
-      if (!sorted) e.sort(best), sorted = true;
-      e.sort(t);
-      if (e.less(t, best)) best = t;
-    }
-    if (!sorted) e.sort(best);
-  } else {
-    e.order[std::size_t(best)].clear();
-  }
+// The context's id: for each symmetry the sum (mod 2^64) of its segments' hashes, which no
+// order of the segments changes, so nothing is sorted; the least of the 8 sums is the same for
+// every symmetric image of the neighbourhood. Hashed with R and the number of segments.
+std::uint64_t canonical_id(const std::vector<Seg>& segs, std::int64_t R) {
+  std::array<std::uint64_t, 8> sums{};
+  for (const Seg& s : segs) hashes_of(s, sums);
   Hash f;
   f.add(R);
-  f.add(std::int64_t(n));
-  for (const Entry& x : e.order[std::size_t(best)]) {
-    if (x.key != kRational) {  // the key is the code's integers
-      f.add(std::int64_t(std::uint64_t(x.key >> 64))), f.add(std::int64_t(std::uint64_t(x.key)));
-    } else {
-      for (std::int64_t v : code_of(segs[x.seg], best)) f.add(v);
-    }
-  }
+  f.add(std::int64_t(segs.size()));
+  f.add(std::int64_t(*std::min_element(sums.begin(), sums.end())));
   return f.value();
 }
 
@@ -377,9 +323,86 @@ std::int32_t floor_half(std::int64_t v) { return std::int32_t(v >= 0 ? v / 2 : -
 }  // namespace
 
 std::uint64_t empty_context_id(std::int64_t radius) {
-  Encodings e;
-  return canonical_id({}, 2 * radius, e);
+  return canonical_id({}, 2 * radius);
 }
+
+// The layer's rings as the windows read them: each with its repeated points and the middles of
+// straight runs dropped and oriented with the layer on its left, which neither translation nor
+// doubling changes, so it is done once a ring, not once a gauge. Most rings are clean and read
+// in place, forwards or backwards; the others are kept simplified.
+class PreparedRings {
+ public:
+  PreparedRings(const PolygonIndex& layer, int threads) : layer_(layer), first_(layer.size() + 1, 0) {
+    for (std::size_t p = 0; p < layer.size(); ++p) {
+      std::size_t n = 0;
+      layer.rings(p, [&](const std::int64_t*, std::size_t, bool) { ++n; });
+      first_[p + 1] = first_[p] + n;
+    }
+    how_.resize(first_.back());
+    std::mutex m;
+    detail::parallel_for(layer.size(), threads, [&](unsigned, std::size_t p) {
+      std::vector<P> v, spare;
+      std::size_t k = first_[p];
+      layer.rings(p, [&](const std::int64_t* xy, std::size_t n, bool outer) {
+        v.resize(n);
+        for (std::size_t j = 0; j < n; ++j) v[j] = {xy[2 * j], xy[2 * j + 1]};
+        simplify(v, spare);
+        const I128 a = v.size() < 3 ? 0 : twice_area(v);
+        if (a == 0) {
+          how_[k] = Skip;
+        } else if (v.size() == n) {
+          how_[k] = (a > 0) == outer ? Forward : Backward;
+        } else {
+          if ((a > 0) != outer) std::reverse(v.begin(), v.end());
+          how_[k] = Copied;
+          std::lock_guard<std::mutex> lock(m);
+          copies_[k] = v;
+        }
+        ++k;
+      });
+    });
+  }
+
+  // The edges of polygon p's rings, relative to c (doubled units), to win.
+  void edges(std::size_t p, std::int64_t cx, std::int64_t cy, Window& win) const {
+    std::size_t k = first_[p];
+    layer_.rings(p, [&](const std::int64_t* xy, std::size_t n, bool) {
+      const How how = how_[k];
+      auto at = [&](std::size_t j) { return P{2 * xy[2 * j] - cx, 2 * xy[2 * j + 1] - cy}; };
+      if (how == Forward) {
+        P a = at(n - 1);
+        for (std::size_t j = 0; j < n; ++j) {
+          const P b = at(j);
+          win.edge(a, b);
+          a = b;
+        }
+      } else if (how == Backward) {
+        P a = at(0);
+        for (std::size_t j = n; j-- > 0;) {
+          const P b = at(j);
+          win.edge(a, b);
+          a = b;
+        }
+      } else if (how == Copied) {
+        const std::vector<P>& v = copies_.at(k);
+        P a{2 * v.back().x - cx, 2 * v.back().y - cy};
+        for (const P& q : v) {
+          const P b{2 * q.x - cx, 2 * q.y - cy};
+          win.edge(a, b);
+          a = b;
+        }
+      }
+      ++k;
+    });
+  }
+
+ private:
+  enum How : std::uint8_t { Skip, Forward, Backward, Copied };
+  const PolygonIndex& layer_;
+  std::vector<std::size_t> first_;  // polygon p's rings: [first_[p], first_[p + 1])
+  std::vector<How> how_;            // a byte a ring: a full layer has millions
+  std::unordered_map<std::size_t, std::vector<P>> copies_;  // the few rings simplifying changed
+};
 
 std::vector<std::uint64_t> context_ids(const PolygonIndex& layer, const BoxTree& boxes, const double* at,
                                        std::size_t n_points, std::int64_t radius, int threads) {
@@ -387,37 +410,23 @@ std::vector<std::uint64_t> context_ids(const PolygonIndex& layer, const BoxTree&
   for (std::size_t i = 0; i < 2 * n_points; ++i) half_units(at[i]);
   const std::int64_t R = 2 * radius;
   std::vector<std::uint64_t> ids(n_points);
+  const PreparedRings rings(layer, threads);
   constexpr std::size_t kBatch = 256;
   const std::size_t batches = (n_points + kBatch - 1) / kBatch;
-  struct Scratch {
-    std::vector<P> ring, spare;
-    Encodings encodings;
-    std::vector<std::size_t> hits;
-  };
-  std::vector<Scratch> scratch(detail::worker_count(batches, threads));
+  std::vector<std::vector<std::size_t>> hits(detail::worker_count(batches, threads));
   detail::parallel_for(batches, threads, [&](unsigned w, std::size_t b) {
-    Scratch& s = scratch[w];
+    std::vector<std::size_t>& met = hits[w];
     Window win(R);
     for (std::size_t i = b * kBatch; i < std::min(n_points, (b + 1) * kBatch); ++i) {
       const std::int64_t cx = half_units(at[2 * i]), cy = half_units(at[2 * i + 1]);
       // The window in DBU, widened to whole units: a polygon met only by the widening adds
       // nothing (its crossings left of the window come in pairs).
       const IntBox q{floor_half(cx - R), floor_half(cy - R), floor_half(cx + R + 1), floor_half(cy + R + 1)};
-      s.hits.clear();
-      boxes.query(q, [&](std::int32_t id) { s.hits.push_back(std::size_t(id)); });
+      met.clear();
+      boxes.query(q, [&](std::int32_t id) { met.push_back(std::size_t(id)); });
       win.clear();
-      for (std::size_t p : s.hits)
-        layer.rings(p, [&](const std::int64_t* xy, std::size_t n, bool outer) {
-          s.ring.resize(n);
-          for (std::size_t j = 0; j < n; ++j) s.ring[j] = {2 * xy[2 * j] - cx, 2 * xy[2 * j + 1] - cy};
-          simplify(s.ring, s.spare);
-          if (s.ring.size() < 3) return;
-          const I128 a = twice_area(s.ring);
-          if (a == 0) return;
-          if ((a > 0) != outer) std::reverse(s.ring.begin(), s.ring.end());
-          win.ring(s.ring);
-        });
-      ids[i] = canonical_id(win.segments(), R, s.encodings);
+      for (std::size_t p : met) rings.edges(p, cx, cy, win);
+      ids[i] = canonical_id(win.segments(), R);
     }
   });
   return ids;

@@ -2,6 +2,7 @@
 
 #include "linf/util/median.hpp"
 #include "linf/util/round.hpp"
+#include "util/parallel.hpp"
 
 #include <algorithm>
 #include <array>
@@ -280,7 +281,7 @@ class ExternalAt {
 
 // Sandwich, comb and T gauges on one internal stretch E_y between edges a and b of a shape.
 void context_gauges(const Sites& sites, const Stretches& all, std::int32_t iy, const ExternalAt& external_at,
-                    const GaugeOptions& opt, Paged<Gauge>& out) {
+                    const GaugeOptions& opt, std::vector<Gauge>& out) {
   const Stretch ey = all[iy];
   const Site& sa = sites.sites[ey.a];
   const double ex = double(sa.b.x - sa.a.x), ey_ = double(sa.b.y - sa.a.y);
@@ -431,11 +432,26 @@ Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& op
   for (std::int32_t i = 0; i < m; ++i)
     most += r.stretches[i].kind == PieceKind::Internal ? 4 : 1;
   r.gauges.reserve(most);
-  for (std::int32_t i = 0; i < m; ++i) {
-    const Stretch s = r.stretches[i];
-    r.gauges.push_back(plain_gauge(s, i));
-    if (s.kind == PieceKind::Internal && !sites.sites[s.a].is_point() && !sites.sites[s.b].is_point())
-      context_gauges(sites, r.stretches, i, external_at, opt, r.gauges);
+  // Each stretch's gauges depend on it and its neighbours alone: placed in blocks on every core,
+  // a round of blocks at a time, and appended in stretch order.
+  constexpr std::int32_t kBlock = 4096;
+  const std::int32_t blocks = (m + kBlock - 1) / kBlock;
+  const std::int32_t round = std::int32_t(4 * detail::worker_count(std::size_t(blocks), opt.threads));
+  std::vector<std::vector<Gauge>> placed;
+  for (std::int32_t first = 0; first < blocks; first += round) {
+    placed.assign(std::size_t(std::min(round, blocks - first)), {});
+    detail::parallel_for(placed.size(), opt.threads, [&](unsigned, std::size_t k) {
+      std::vector<Gauge>& out = placed[k];
+      const std::int32_t b = first + std::int32_t(k);
+      for (std::int32_t i = b * kBlock; i < std::min(m, (b + 1) * kBlock); ++i) {
+        const Stretch s = r.stretches[i];
+        out.push_back(plain_gauge(s, i));
+        if (s.kind == PieceKind::Internal && !sites.sites[s.a].is_point() && !sites.sites[s.b].is_point())
+          context_gauges(sites, r.stretches, i, external_at, opt, out);
+      }
+    });
+    for (const std::vector<Gauge>& out : placed)
+      for (const Gauge& g : out) r.gauges.push_back(g);
   }
   std::sort(r.gauges.begin(), r.gauges.end(), before);
   for (const Gauge& g : r.gauges) r.top_score = std::max(r.top_score, g.score);

@@ -163,9 +163,9 @@ struct Held {
 // The pairs meeting at one vertex (the piece ends `end(0..n-1)` sharing one key) that `keep`
 // accepts and that have no chain. Nothing here depends on the order of the ends: a diagram
 // that comes in parts gives the same point stretches as a whole one.
-template <class EndAt, class HasChain>
+template <class EndAt, class HasChain, class Out>
 void vertex(const Key& key, std::size_t n, const EndAt& end, const Sites& sites, const StretchFilter& keep,
-            const HasChain& has_chain, std::vector<std::int32_t>& owners, Paged<PointStretch>& out) {
+            const HasChain& has_chain, std::vector<std::int32_t>& owners, Out& out) {
   if (n < 2) return;
   // Where the ends differ by rounding, the greatest (x, y, clearance) gives the vertex.
   End top = end(0);
@@ -318,9 +318,15 @@ StretchStream::StretchStream(const Sites& sites, StretchFilter keep, std::size_t
 
 StretchStream::~StretchStream() = default;
 
-void StretchStream::part(const std::vector<Piece>& part, const Box& frame) {
-  Impl& m = *impl_;
-  if (m.pairs_started) throw std::logic_error("StretchStream: every part comes before the pairs");
+// A part's vertices: the point stretches of those away from its frame, the ends of those on it.
+struct StretchStream::Reading {
+  std::vector<PointStretch> points;
+  std::vector<Held> held;
+};
+
+std::shared_ptr<const StretchStream::Reading> StretchStream::read(const std::vector<Piece>& part, const Box& frame) const {
+  const Impl& m = *impl_;
+  auto r = std::make_shared<Reading>();
   // A vertex farther than this from the frame has all its pieces in this part: pieces stop at
   // the frame, and no end of another part can round to its key (1/1024 DBU).
   const double eps = 1.0 / 64;
@@ -338,6 +344,7 @@ void StretchStream::part(const std::vector<Piece>& part, const Box& frame) {
       if (!m.keep || m.keep(a, b, it->kind)) return true;
     return false;
   };
+  std::vector<std::int32_t> owners;
   const std::vector<KeyedEnd> ends = sorted_ends(part.data(), part.size());
   for (std::size_t g0 = 0; g0 < ends.size();) {
     const Key k = ends[g0].key;
@@ -346,14 +353,24 @@ void StretchStream::part(const std::vector<Piece>& part, const Box& frame) {
     for (; g1 < ends.size() && ends[g1].key == k; ++g1)
       framed = framed || on_frame(end_of(part.data(), ends[g1].end).at);
     if (framed) {
-      for (std::size_t e = g0; e < g1; ++e) m.held.push_back({k, end_of(part.data(), ends[e].end)});
+      for (std::size_t e = g0; e < g1; ++e) r->held.push_back({k, end_of(part.data(), ends[e].end)});
     } else {
       vertex(k, g1 - g0, [&](std::size_t e) { return end_of(part.data(), ends[g0 + e].end); }, m.sites, m.keep,
-             has_chain_here, m.owners, m.points);
+             has_chain_here, owners, r->points);
     }
     g0 = g1;
   }
+  return r;
 }
+
+void StretchStream::add(const Reading& r) {
+  Impl& m = *impl_;
+  if (m.pairs_started) throw std::logic_error("StretchStream: every part comes before the pairs");
+  for (const PointStretch& p : r.points) m.points.push_back(p);
+  for (const Held& h : r.held) m.held.push_back(h);
+}
+
+void StretchStream::part(const std::vector<Piece>& part, const Box& frame) { add(*read(part, frame)); }
 
 void StretchStream::pair(const Piece* pieces, std::size_t n) {
   Impl& m = *impl_;

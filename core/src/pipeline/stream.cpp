@@ -152,19 +152,25 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
   std::vector<double> clear;  // a sample of clearances: where the checker draws its pairs
   BuildStats st;
   t0 = std::chrono::steady_clock::now();
-  auto take = [&](std::vector<Piece>& part, const Box& frame) {
+  // A part's own work — its kinds, its vertices' stretches — on the thread that built it (the
+  // sweep's tiles: several at once); the rest in the parts' order.
+  using Reading = std::shared_ptr<const StretchStream::Reading>;
+  auto prepare = [&](std::vector<Piece>& part, const Box& frame) -> std::any {
     for (Piece& p : part) p.kind = classify(d.sites, p);
+    return stretches ? stretches->read(part, frame) : Reading{};
+  };
+  auto take = [&](std::vector<Piece>& part, const Box&, std::any& prepared) {
     for (std::size_t i = 0; i < part.size(); i += 1 + part.size() / 64) clear.push_back(part[i].d1);
     if (stretches) {
       const auto t = std::chrono::steady_clock::now();
-      stretches->part(part, frame);
+      stretches->add(*std::any_cast<Reading&>(prepared));
       t_stretches += since(t);
     }
     runs.add(part);
   };
   BuildOptions build = opt.build;
   build.sweep = d.swept = opt.sweep && sweep_handles(d.sites);  // a cluster's tiles too (tile_jobs.hpp)
-  build_parts(d.sites, d.clip, build, &st, take, tiles, opt.progress);
+  build_parts(d.sites, d.clip, build, &st, prepare, take, tiles, opt.progress);
   d.seconds_build = since(t0) - t_stretches;
   d.tiles = st.tiles, d.tile_tasks = st.tasks, d.largest_tile_sites = st.largest_tile_sites;
 

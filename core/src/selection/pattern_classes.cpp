@@ -6,8 +6,10 @@
 #include <climits>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include "geometry/window_cut.hpp"
+#include "util/parallel.hpp"
 
 namespace linf {
 
@@ -27,7 +29,11 @@ struct Clip {
   std::vector<BPolygon> polygons;  // holes joined to their outlines by cut lines
   std::array<double, kGrid * kGrid> cells{};  // area in each cell, cell (i, j) at i + kGrid j
   double area = 0, perimeter = 0;
+  bool manhattan = false;  // every edge axis-parallel: XORed as Boost.Polygon's 90-degree sets
 };
+
+// Windows whose clips are made at once (in parallel), then compared in order.
+constexpr std::size_t kChunk = 4096;
 
 // Area of a polygon (cut lines included: they add nothing) inside the box, by clipping it to the
 // box's four half-planes in turn (Sutherland-Hodgman): the clipped ring may have zero-width
@@ -99,8 +105,9 @@ int cell_to(int k, int i, int j) {
   return int((c[0] + kGrid - 1) / 2) + kGrid * int((c[1] + kGrid - 1) / 2);
 }
 
-BSet set_of(const Clip& c, int k) {
-  BSet s;
+template <class Set = BSet>
+Set set_of(const Clip& c, int k) {
+  Set s;
   for (const BPolygon& p : c.polygons) {
     std::vector<BPoint> v;
     v.reserve(p.size());
@@ -108,17 +115,29 @@ BSet set_of(const Clip& c, int k) {
       const auto t = transform(k, q.x(), q.y());
       v.emplace_back(int(t[0]), int(t[1]));
     }
-    BPolygon tp;
-    tp.set(v.begin(), v.end());
-    s.insert(tp);
+    if constexpr (std::is_same_v<Set, BSet>) {
+      BPolygon tp;
+      tp.set(v.begin(), v.end());
+      s.insert(tp);
+    } else {
+      s.insert(polygon_90_of(v));
+    }
   }
   return s;
+}
+
+// The area of the XOR of two clips under symmetry k of the second; exact (doubled units squared).
+double xor_area(const Clip& c, const Clip& rep, int k) {
+  using namespace bp::operators;
+  if (c.manhattan && rep.manhattan) return double(bp::area(set_of<bp::polygon_90_set_data<int>>(c, 0) ^
+                                                           set_of<bp::polygon_90_set_data<int>>(rep, k)));
+  return double(bp::area(set_of(c, 0) ^ set_of(rep, k)));
 }
 
 }  // namespace
 
 PatternClasses classify_patterns(const FlatPolygons& layer, const std::vector<std::array<std::int64_t, 4>>& windows,
-                           const ClassRule& rule) {
+                                 const ClassRule& rule, int threads) {
   using namespace bp::operators;
   if (rule.by == ClassRule::Area && !(rule.area_fraction >= 0))
     throw std::invalid_argument("the area fraction of a pattern must be 0 or more");
@@ -129,7 +148,7 @@ PatternClasses classify_patterns(const FlatPolygons& layer, const std::vector<st
     c.side = b[2] - b[0];
     if (c.side <= 0 || b[3] - b[1] != c.side) throw std::invalid_argument("a pattern window must be a square");
     if (c.side > (std::int64_t(1) << 29)) throw std::invalid_argument("a pattern window larger than 2^29 DBU");
-    const std::vector<BPolygon> cut = layer_cut.cut(b);
+    const std::vector<BPolygon> cut = layer_cut.cut(b, &c.manhattan);
     const std::int64_t cx = b[0] + b[2], cy = b[1] + b[3];
     for (const BPolygon& q : cut) {
       std::vector<BPoint> v;
@@ -143,9 +162,14 @@ PatternClasses classify_patterns(const FlatPolygons& layer, const std::vector<st
 
   PatternClasses out;
   out.of_window.reserve(windows.size());
-  std::vector<Clip> reps;
+  std::vector<Clip> reps, chunk;
   for (std::size_t w = 0; w < windows.size(); ++w) {
-    const Clip c = clip_of(windows[w]);
+    if (w % kChunk == 0) {
+      // The clips of the next windows, made on every core: each depends on its window alone.
+      chunk.assign(std::min(kChunk, windows.size() - w), Clip{});
+      detail::parallel_for(chunk.size(), threads, [&](unsigned, std::size_t i) { chunk[i] = clip_of(windows[w + i]); });
+    }
+    Clip& c = chunk[w % kChunk];
     const double window_area = 4.0 * double(c.side) * double(c.side);  // doubled units
     const double e2 = 2.0 * double(rule.edge);
     int found = -1;
@@ -167,12 +191,13 @@ PatternClasses classify_patterns(const FlatPolygons& layer, const std::vector<st
           for (int i = 0; i < kGrid; ++i)
             lower += std::fabs(c.cells[std::size_t(cell_to(k, i, j))] - rep.cells[std::size_t(i + kGrid * j)]);
         if (lower > bound) continue;
-        if (!have_mine) mine = set_of(c, 0), have_mine = true;
         ++out.compared;
-        BSet x = mine ^ set_of(rep, k);
         if (rule.by == ClassRule::Area) {
-          if (double(bp::area(x)) <= rule.area_fraction * window_area * (1 + 1e-12)) found = int(r);
+          if (xor_area(c, rep, k) <= rule.area_fraction * window_area * (1 + 1e-12)) found = int(r);
         } else {
+          using namespace bp::operators;
+          if (!have_mine) mine = set_of(c, 0), have_mine = true;
+          BSet x = mine ^ set_of(rep, k);
           if (rule.edge > 0) x.resize(-int(rule.edge));
           if (bp::area(x) == 0) found = int(r);
         }
@@ -180,7 +205,7 @@ PatternClasses classify_patterns(const FlatPolygons& layer, const std::vector<st
     }
     if (found < 0) {
       found = int(reps.size());
-      reps.push_back(c);
+      reps.push_back(std::move(c));
       out.representative.push_back(std::int32_t(w));
       out.count.push_back(0);
     }

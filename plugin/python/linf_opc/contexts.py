@@ -16,10 +16,7 @@ from collections import Counter
 from . import core
 from .gauges import TYPES
 from .polygons import core_input
-from .progress import breathe
 
-EXTERNAL = TYPES.index("external")
-INTERNAL = TYPES.index("internal")
 QUANTILES = 4  # cd and space bins per type: quartiles of the distinct values
 
 
@@ -74,38 +71,28 @@ class Neighbours:
     """A gauge's neighbouring space: for a width gauge (internal, sandwich, comb, T: their cd is
     a width) the least cd of the external gauges whose points lie within `radius` (L-inf) of its
     point; for an external gauge the least cd of the internal gauges there. None where there is
-    none. The other kind's gauges are kept on a grid of cells of side `radius`, each cell's in
-    ascending cd, so a query reads the nine cells around the point until a cd cannot improve."""
+    none. Found by the core (core.neighbour_spaces), many gauges a call (each call indexes the
+    layer's gauges), and kept in `known` ({row: space})."""
 
     def __init__(self, table, radius):
         self.radius = radius
-        self.x, self.y = table.centres()
-        self.cd, _, self.types = table.cd_extension_type()
-        self.cells = ({}, {})  # [0]: internal gauges' cells, [1]: external gauges'
-        for i, t in enumerate(self.types):
-            if t == INTERNAL or t == EXTERNAL:
-                cell = (int(self.x[i] // radius), int(self.y[i] // radius))
-                self.cells[t == EXTERNAL].setdefault(cell, []).append(i)
-        for grid in self.cells:
-            for cell, members in grid.items():
-                grid[cell] = array("i", sorted(members, key=self.cd.__getitem__))
+        x, y = table.centres()
+        cd, _, types = table.cd_extension_type()
+        self._columns = (x, y, cd, types)
+        self.known = {}
+
+    def spaces(self, rows):
+        """{row: space} for the table rows `rows` (any iterable), None where there is none."""
+        rows = list(rows)
+        todo = array("i", (i for i in dict.fromkeys(rows) if i not in self.known))
+        if todo:
+            got = array("d")
+            got.frombytes(core.neighbour_spaces(*self._columns, todo, self.radius))
+            self.known.update((i, None if v != v else v) for i, v in zip(todo, got))  # NaN: none
+        return {i: self.known[i] for i in rows}
 
     def space(self, i):
-        breathe()
-        grid = self.cells[self.types[i] != EXTERNAL]
-        px, py, r = self.x[i], self.y[i], self.radius + 1e-9
-        ix, iy = int(px // self.radius), int(py // self.radius)
-        best = None
-        for cx in (ix - 1, ix, ix + 1):
-            for cy in (iy - 1, iy, iy + 1):
-                for j in grid.get((cx, cy), ()):
-                    cd = self.cd[j]
-                    if best is not None and cd >= best:
-                        break
-                    if abs(self.x[j] - px) <= r and abs(self.y[j] - py) <= r:
-                        best = cd
-                        break
-        return best
+        return self.known[i] if i in self.known else self.spaces((i,))[i]
 
 
 def edges(values, q=QUANTILES):

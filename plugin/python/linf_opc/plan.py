@@ -39,10 +39,10 @@ class Plan(Split):
     """A split whose patterns are representatives: the calibration list first, then the
     verification list. rows(which) gives the gauge table's rows with their contexts and counts."""
 
-    def __init__(self, params, patterns, assign, table, contexts, neighbours, space, kind):
+    def __init__(self, params, patterns, assign, table, contexts, neighbours, kind):
         super().__init__("plan", params, patterns, assign, None)
         self.table, self.contexts = table, contexts
-        self._neighbours, self._space = neighbours, space  # space: {row: neighbouring space}, filled as asked
+        self._neighbours = neighbours  # every gauge the plan holds had its space found when it was made
         self._kind = kind  # per pattern: one of KINDS
 
     def rows(self, which):
@@ -53,9 +53,7 @@ class Plan(Split):
                 array("Q", (c.count[c.key(i)] for i in rows)))
 
     def space(self, i):
-        if i not in self._space:
-            self._space[i] = self._neighbours.space(i)
-        return self._space[i]
+        return self._neighbours.space(i)
 
     def _set_summary(self, which, dbu):
         rows = [p.index for p, a in zip(self.patterns, self.assign) if a == which]
@@ -134,13 +132,13 @@ def plan(table, polygons, run, window_rows, markers, budget, verify, radius, max
     neighbours = ctx.Neighbours(table, radius)
     cd, _, _ = table.cd_extension_type()
     reps = [i for i in contexts.representatives if eligible(i)]
-    space = {i: neighbours.space(i) for i in contexts.representatives}
-    strata = ctx.Strata(contexts, cd, space)
+    # Spaces are found many gauges a call (each call indexes the layer's gauges): the
+    # representatives now, the other gauges the plan may take as they become known.
+    neighbours.spaces(contexts.representatives)
+    strata = ctx.Strata(contexts, cd, neighbours.known)
 
     def bin_of(i):
-        if i not in space:
-            space[i] = neighbours.space(i)
-        return strata.of(i, cd[i], space[i])
+        return strata.of(i, cd[i], neighbours.space(i))
 
     key = contexts.key
     # Calibration: the marker windows' gauges (rank order), each (type, context) once; then
@@ -148,6 +146,7 @@ def plan(table, polygons, run, window_rows, markers, budget, verify, radius, max
     # context is never repeated: where the budget exceeds the contexts, the list is shorter.
     taken = set()
     marker_rows = sorted(window_rows)
+    neighbours.spaces(marker_rows)
     cal = _first(marker_rows, key, taken, budget)
     kind = ["marker"] * len(cal)
     rest = [i for i in reps if key(i) not in taken]
@@ -170,6 +169,7 @@ def plan(table, polygons, run, window_rows, markers, budget, verify, radius, max
     lacking = {k: i for k, i in wanted.items() if k not in other}
     other.update({k: i for k, i in contexts.others(lacking).items() if eligible(i) and i not in in_cal})
     candidates = sorted(set(other.values()) | set(i for i in reps if key(i) not in taken))
+    neighbours.spaces(candidates)
     order = candidates if len(candidates) <= verify else ctx.spread(candidates, bin_of)
     ver = order[:verify]
     kind += ["other" if key(i) in wanted else "held-out" for i in ver]
@@ -183,7 +183,7 @@ def plan(table, polygons, run, window_rows, markers, budget, verify, radius, max
         patterns.append(box, i, grid.inside(box), k == "marker")
     assign = ["calibration"] * len(cal) + ["verification"] * len(ver)
     return Plan(dict(params or {}, budget=budget, verify=verify), patterns, assign, table, contexts, neighbours,
-                space, kind)
+                kind)
 
 
 def of_selection(sel, polygons, dbu, budget, verify, radius=None):

@@ -13,13 +13,32 @@ from .progress import breathe
 SVG_PICTURE_MAX = 200000
 
 
+def _point_count(polygons):
+    flat = getattr(polygons, "flat", None)
+    if flat is not None:
+        return len(flat()[0]) // 2
+    return sum(len(outer) + sum(len(h) for h in holes) for outer, holes in polygons)
+
+
+def _rings(polygons):
+    """Every ring, outer or hole, as (xs, ys): slices of a Polygons' flat arrays (no tuple a
+    point), or the lists' coordinates."""
+    flat = getattr(polygons, "flat", None)
+    if flat is None:
+        for outer, holes in polygons:
+            for ring in [outer] + list(holes):
+                yield [p[0] for p in ring], [p[1] for p in ring]
+        return
+    points, counts = flat()
+    at = 0
+    for c in counts:
+        n = abs(c)
+        yield points[2 * at:2 * (at + n):2], points[2 * at + 1:2 * (at + n):2]
+        at += n
+
+
 def svg_picture_fits(polygons, run, markers):
-    n = len(markers) + len(run.windows)
-    for outer, holes in polygons:
-        n += len(outer) + sum(len(h) for h in holes)
-        if n > SVG_PICTURE_MAX:
-            return False
-    return True
+    return len(markers) + len(run.windows) + _point_count(polygons) <= SVG_PICTURE_MAX
 
 COLOURS = {"A": "#1f77b4", "B": "#d62728", "C": "#2ca02c"}
 
@@ -69,8 +88,11 @@ def _plot(title, ylabel, series, sizes):
 
 
 def _picture(polygons, run, markers, size=700):
-    xs = [p[0] for outer, _ in polygons for p in outer] + [b[0] for b in markers] + [b[2] for b in markers]
-    ys = [p[1] for outer, _ in polygons for p in outer] + [b[1] for b in markers] + [b[3] for b in markers]
+    xs, ys = [b[0] for b in markers] + [b[2] for b in markers], [b[1] for b in markers] + [b[3] for b in markers]
+    for rx, ry in _rings(polygons):
+        if len(rx):
+            xs += (min(rx), max(rx))
+            ys += (min(ry), max(ry))
     if not xs:
         return ""
     x0, x1, y0, y1 = min(xs), max(xs), min(ys), max(ys)
@@ -78,10 +100,10 @@ def _picture(polygons, run, markers, size=700):
     X = lambda v: (v - x0) * s
     Y = lambda v: (y1 - v) * s
     d = []
-    for k, (outer, holes) in enumerate(polygons):
-        breathe(k, len(polygons))
-        for ring in [outer] + holes:
-            d.append("M" + " L".join("%.1f %.1f" % (X(px), Y(py)) for px, py in ring) + "Z")
+    rings = len(polygons.flat()[1]) if hasattr(polygons, "flat") else sum(1 + len(h) for _, h in polygons)
+    for k, (rx, ry) in enumerate(_rings(polygons)):
+        breathe(k, rings)
+        d.append("M" + " L".join("%.1f %.1f" % ((px - x0) * s, (y1 - py) * s) for px, py in zip(rx, ry)) + "Z")
     out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%.0f" height="%.0f" class="layout">'
            % ((x1 - x0) * s + 2, (y1 - y0) * s + 2),
            '<path fill="#bbbbbb" fill-rule="evenodd" d="%s"/>' % " ".join(d)]

@@ -16,6 +16,7 @@ from . import picture as layout_picture
 from . import report as html_report
 from . import report_db
 from .progress import breathe
+from .gauges import TYPES
 from .selection import MODE_NAMES
 
 CSV_HEADER = ["id", "x1", "y1", "x2", "y2", "gauge_id", "type", "score", "markers_covered"]
@@ -118,6 +119,16 @@ def report(study, gauges, dbu, cell_name, rdb, markers=None):
     return rdb
 
 
+def _gauge_fields(gauges):
+    """gauge index -> (rank, type, score) of `gauges`: read from a GaugeTable's columns (no record
+    a gauge), else from its records."""
+    columns = getattr(gauges, "columns", None)
+    if columns is None:
+        return lambda i: (gauges[i].rank, gauges[i].type, gauges[i].score)
+    reals, ints = columns()
+    return lambda i: (ints[13 * i], TYPES[ints[13 * i + 12]], reals[10 * i + 7])
+
+
 def _g(v):
     """A number as KLayout writes it in a report database."""
     return "%.12g" % v
@@ -164,16 +175,25 @@ def _write_report(path, items, study, gauges, dbu, cell_name, source, generator,
     def indent(text, n):
         return "".join(" " * n + line + "\n" for line in text.splitlines())
 
+    fields = _gauge_fields(gauges)
     runs = []
     for (mode, size), run in sorted(study.runs.items()):
         name = "%s %dx%d" % (mode, size, size)
         runs.append(category(name, "mode %s (%s), windows of %dx%d pitches (%.4g um)"
                              % (mode, MODE_NAMES[mode], size, size, run.side * dbu)))
+        # A run's items share their tags and category: their head is made once.
+        tags = ["mode_%s" % mode, "size_%d" % size]
+        for t in tags:
+            if t not in plain:
+                plain.append(t)
+        head = report_db.item_head(sorted(tags, key=plain.index), "patterns.%s" % _name(name), cell)
         for x1, y1, x2, y2, gi, ms in run.windows:
-            g = gauges[gi]
-            item(["mode_%s" % mode, "size_%d" % size], "patterns.%s" % _name(name),
-                 [box(x1, y1, x2, y2), "[#gauge_rank] float: %s" % _g(g.rank), "[#type] text: %s" % g.type,
-                  "[#score] float: %s" % _g(g.score * dbu), "[#markers_covered] float: %s" % _g(len(ms))])
+            breathe()
+            rank, kind, score = fields(gi)
+            items.write("%s    <value>%s</value>\n    <value>[#gauge_rank] float: %s</value>\n"
+                        "    <value>[#type] text: %s</value>\n    <value>[#score] float: %s</value>\n"
+                        "    <value>[#markers_covered] float: %s</value>\n%s"
+                        % (head, box(x1, y1, x2, y2), _g(rank), kind, _g(score * dbu), _g(len(ms)), report_db.ITEM_END))
     cats = [category("patterns", "pattern windows around ranked gauges that cover the markers",
                      [indent(c, 2) for c in runs])]
     if markers is not None:

@@ -286,3 +286,26 @@ TEST(Gauges, EveryLineOnAManhattanLayoutIsHorizontalOrVertical) {
   EXPECT_LT(beside, lines / 5);
   std::printf("%zu lines, %zu corner to corner, %zu of owners touched on adjacent sides\n", lines, corners, beside);
 }
+
+TEST(Gauges, TheSameGaugesOnEveryNumberOfThreads) {
+  // Enough stretches for several blocks of 4,096 (the gauges are placed in blocks on the threads).
+  const auto layout = linf::testing::block(7, linf::testing::Style::Rectilinear, 20, 20);
+  const Result r = voronoi_of_polygons(layout);
+  auto placed = [&](int threads) {
+    GaugeOptions o;
+    o.threads = threads;
+    return gauges_of(r.diagram, o);
+  };
+  const Gauges one = placed(1);
+  ASSERT_GT(one.stretches.size(), 3u * 4096u);
+  for (int threads : {2, 3}) {
+    const Gauges g = placed(threads);
+    ASSERT_EQ(g.gauges.size(), one.gauges.size()) << threads << " threads";
+    for (std::size_t i = 0; i < g.gauges.size(); ++i) {
+      const Gauge &x = g.gauges[i], &y = one.gauges[i];
+      ASSERT_TRUE(x.type == y.type && x.a == y.a && x.b == y.b && x.at.x == y.at.x && x.at.y == y.at.y &&
+                  x.score == y.score && x.cd == y.cd && x.stretch == y.stretch && x.neighbour == y.neighbour)
+          << "rank " << i + 1 << ", " << threads << " threads";
+    }
+  }
+}

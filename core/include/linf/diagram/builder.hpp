@@ -14,6 +14,7 @@
 // are split by their perpendicular bisector, and an axis-parallel edge and its endpoint by the
 // perpendicular through the endpoint, as in CGAL's convention.
 #pragma once
+#include <any>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -90,6 +91,18 @@ using TileRunner = std::function<void(const std::function<bool(std::string& job)
 // far field's.
 void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
                  const PartSink& sink, const TileRunner& runner, const ProgressFn& progress = {});
+
+// A sink's work on a part that depends on the part alone (classifying its pieces, reading its
+// vertices): the sweep's tiles run it on the thread that swept the tile, as soon as it is swept,
+// several tiles at once and in any order; elsewhere it runs just before the sink. What it
+// returns reaches the sink with the part.
+using PartPrepare = std::function<std::any(std::vector<Piece>& part, const Box& frame)>;
+using PreparedSink = std::function<void(std::vector<Piece>& part, const Box& frame, std::any& prepared)>;
+
+// build_parts with a prepare step: the same parts in the same order, each prepared once.
+void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
+                 const PartPrepare& prepare, const PreparedSink& sink, const TileRunner& runner,
+                 const ProgressFn& progress = {});
 
 // One tile job's result bytes from its bytes, with `threads` workers (0: one a core): the
 // same bytes on every host and for every thread count. Throws std::invalid_argument for bytes

@@ -49,6 +49,8 @@ struct GaugeOptions {
   // layer) are the far field between blocks and around the layout, not pattern: no external
   // gauge there, and such a space makes no neighbour for sandwich, comb or T. 0 keeps all.
   double space_limit_widths = 10;
+  // Threads placing the gauges (0: one per core); the gauges do not depend on it.
+  int threads = 0;
 };
 
 struct Gauges {

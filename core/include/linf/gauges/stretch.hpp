@@ -109,6 +109,13 @@ class StretchStream {
   StretchStream(const Sites& sites, StretchFilter keep, std::size_t expected_pieces = 0);
   ~StretchStream();
   void part(const std::vector<Piece>& part, const Box& frame);
+  // part() in two steps: read() depends on the part alone (it only reads the stream's sites and
+  // filter, which must be safe to call from several threads) and may run on any thread, several
+  // parts at once; add() then takes the readings in the parts' order. part(p, f) is
+  // add(*read(p, f)).
+  struct Reading;
+  std::shared_ptr<const Reading> read(const std::vector<Piece>& part, const Box& frame) const;
+  void add(const Reading& reading);
   void pair(const Piece* pieces, std::size_t n);
   Stretches finish();
 

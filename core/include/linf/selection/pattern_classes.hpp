@@ -37,7 +37,8 @@ struct PatternClasses {
   std::size_t compared = 0;                  // exact XOR comparisons made (after the filter)
 };
 
+// threads: the clips are made on this many (0: one per core); the classes do not depend on it.
 PatternClasses classify_patterns(const FlatPolygons& layer, const std::vector<std::array<std::int64_t, 4>>& windows,
-                           const ClassRule& rule);
+                                 const ClassRule& rule, int threads = 0);
 
 }  // namespace linf
