@@ -173,12 +173,24 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   // Far enough along any bisector to be outside the box: the bisectors' slopes are at most 1.
   const double reach = 2 * (clip.x2 - clip.x1 + clip.y2 - clip.y1) + std::fabs(clip.x1) + std::fabs(clip.x2) +
                        std::fabs(clip.y1) + std::fabs(clip.y2) + 1;
-  std::vector<Piece> out;
-  struct Span {
+  // Edges in join order first (by owner pair; a pair has one edge, so nothing is joined unless
+  // two edges share a pair), then each edge's pieces written straight where they belong and
+  // sorted there: one array of pieces, touched once (fresh pages cost a fault each).
+  struct Edge {
     std::uint64_t pair;  // (a, b) of its pieces, the sort key
-    std::size_t first, last;
+    std::size_t half;    // its first half-edge
   };
-  std::vector<Span> spans;  // each edge's pieces in `out`
+  std::vector<Edge> edges;
+  edges.reserve(topo.halves.size() / 2);
+  for (std::size_t e = 0; e + 1 < topo.halves.size(); e += 2) {
+    const std::int32_t u = topo.halves[e].site, w = topo.halves[e + 1].site;
+    if (u < 0 || w < 0) throw std::logic_error("sweep builder: a site event without its site");
+    edges.push_back({std::uint64_t(std::uint32_t(std::min(u, w))) << 32 | std::uint32_t(std::max(u, w)), e});
+  }
+  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.pair < y.pair; });
+  std::vector<Piece> joined, run;
+  joined.reserve(edges.size() + edges.size() / 2);
+  std::vector<Piece>* out = &joined;
   auto keep = [&](Vec2 p, Vec2 q, std::int32_t u, std::int32_t w) {
     if (p.x == q.x && p.y == q.y) return;
     Piece pc;
@@ -186,60 +198,64 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     pc.a = std::min(u, w), pc.b = std::max(u, w);
     pc.d1 = linf_distance(p, S[u]), pc.d2 = linf_distance(q, S[u]);
     orient(pc);
-    out.push_back(pc);
+    out->push_back(pc);
   };
   auto emit = [&](Vec2 p, Vec2 q, std::int32_t u, std::int32_t w) {
     if (!clip_segment(p, q, clip)) return;
     if (!hole) return keep(p, q, u, w);
     outside(p, q, *hole, [&](const Vec2& a, const Vec2& b) { keep(a, b, u, w); });
   };
-  for (std::size_t e = 0; e + 1 < topo.halves.size(); e += 2) {
+  auto pieces_of = [&](std::size_t e) {
     const Topology::Half &h = topo.halves[e], &g = topo.halves[e + 1];
-    if (h.site < 0 || g.site < 0) throw std::logic_error("sweep builder: a site event without its site");
     const Site &s = S[h.site], &t = S[g.site];
     const sweep::Bisector b(s, t);
-    const std::size_t first = out.size();
     if (b.straight) {
       if (h.vertex0 < 0 || g.vertex0 < 0)
         throw std::logic_error("sweep builder: an unbounded diagonal edge between sites " + std::to_string(h.site) +
                                " and " + std::to_string(g.site));
-      emit(topo.vertices[h.vertex0], topo.vertices[g.vertex0], h.site, g.site);
-    } else {
-      double from, to;  // the edge's parameter range, walked from h's vertex to g's
-      if (h.vertex0 >= 0 && g.vertex0 >= 0) {
-        from = b.param(topo.vertices[h.vertex0]), to = b.param(topo.vertices[g.vertex0]);
-      } else if (h.vertex0 >= 0 || g.vertex0 >= 0) {
-        // From its vertex to infinity with the vertex's half-edge's site on its left.
-        const bool from_h = h.vertex0 >= 0;
-        from = b.param(topo.vertices[from_h ? h.vertex0 : g.vertex0]);
-        to = b.left_of_growing(from_h ? s : t, from_h ? t : s) ? from + reach : from - reach;
-      } else {
-        from = -reach, to = reach;
-      }
-      if (from > to) std::swap(from, to);
-      double cuts[4] = {from, 0, 0, to};
-      int n = 1;
-      if (b.bends())
-        for (double c : {b.mid_p - b.half, b.mid_p + b.half})
-          if (c > from && c < to) cuts[n++] = c;
-      cuts[n++] = to;
-      for (int i = 0; i + 1 < n; ++i) emit(b.point(cuts[i]), b.point(cuts[i + 1]), h.site, g.site);
+      return emit(topo.vertices[h.vertex0], topo.vertices[g.vertex0], h.site, g.site);
     }
-    if (out.size() > first)
-      spans.push_back({std::uint64_t(std::uint32_t(out[first].a)) << 32 | std::uint32_t(out[first].b), first, out.size()});
-  }
-  // In join_order, as build_pieces leaves them: the edges sorted by owner pair (a pair has one
-  // edge, so nothing is joined unless two edges share a pair), each edge's few pieces sorted.
-  std::sort(spans.begin(), spans.end(), [](const Span& x, const Span& y) { return x.pair < y.pair; });
-  std::vector<Piece> joined, run;
-  joined.reserve(out.size());
-  for (std::size_t i = 0; i < spans.size();) {
+    double from, to;  // the edge's parameter range, walked from h's vertex to g's
+    if (h.vertex0 >= 0 && g.vertex0 >= 0) {
+      from = b.param(topo.vertices[h.vertex0]), to = b.param(topo.vertices[g.vertex0]);
+    } else if (h.vertex0 >= 0 || g.vertex0 >= 0) {
+      // From its vertex to infinity with the vertex's half-edge's site on its left.
+      const bool from_h = h.vertex0 >= 0;
+      from = b.param(topo.vertices[from_h ? h.vertex0 : g.vertex0]);
+      to = b.left_of_growing(from_h ? s : t, from_h ? t : s) ? from + reach : from - reach;
+    } else {
+      from = -reach, to = reach;
+    }
+    if (from > to) std::swap(from, to);
+    double cuts[4] = {from, 0, 0, to};
+    int n = 1;
+    if (b.bends())
+      for (double c : {b.mid_p - b.half, b.mid_p + b.half})
+        if (c > from && c < to) cuts[n++] = c;
+    cuts[n++] = to;
+    for (int i = 0; i + 1 < n; ++i) emit(b.point(cuts[i]), b.point(cuts[i + 1]), h.site, g.site);
+  };
+  for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i + 1;
-    while (j < spans.size() && spans[j].pair == spans[i].pair) ++j;
+    while (j < edges.size() && edges[j].pair == edges[i].pair) ++j;
+    if (j == i + 1) {  // the usual case
+      const std::size_t first = joined.size();
+      pieces_of(edges[i].half);
+      std::sort(joined.begin() + first, joined.end(), join_order);
+      i = j;
+      continue;
+    }
     run.clear();
-    for (std::size_t k = i; k < j; ++k) run.insert(run.end(), out.begin() + spans[k].first, out.begin() + spans[k].last);
+    out = &run;
+    int with_pieces = 0;  // two edges' pieces are joined; one edge's are left as they are
+    for (std::size_t k = i; k < j; ++k) {
+      const std::size_t before = run.size();
+      pieces_of(edges[k].half);
+      with_pieces += run.size() > before;
+    }
+    out = &joined;
     std::sort(run.begin(), run.end(), join_order);
-    if (j > i + 1) join_pair(run);
+    if (with_pieces > 1) join_pair(run);
     joined.insert(joined.end(), run.begin(), run.end());
     i = j;
   }
