@@ -48,7 +48,7 @@ struct Topology {
     }
   }
 
-  void _reserve(std::size_t) {}
+  void _reserve(std::size_t site_events) { vertices.reserve(2 * site_events); }  // as Boost's diagram: at most 2n
   template <typename Site>
   void _process_single_site(const Site&) {}
   template <typename Site>
