@@ -176,20 +176,22 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   // Edges in join order first (by owner pair; a pair has one edge, so nothing is joined unless
   // two edges share a pair), then each edge's pieces written straight where they belong and
   // sorted there: one array of pieces, touched once (fresh pages cost a fault each).
-  struct Edge {
+  struct Edge {  // what its pieces need, so that the sorted walk reads no half-edge
     std::uint64_t pair;  // (a, b) of its pieces, the sort key
-    std::size_t half;    // its first half-edge
+    std::int32_t v0, v1; // the vertices of its half-edge from a and of its twin's, or -1
   };
   std::vector<Edge> edges;
   edges.reserve(topo.halves.size() / 2);
   for (std::size_t e = 0; e + 1 < topo.halves.size(); e += 2) {
-    const std::int32_t u = topo.halves[e].site, w = topo.halves[e + 1].site;
-    if (u < 0 || w < 0) throw std::logic_error("sweep builder: a site event without its site");
-    edges.push_back({std::uint64_t(std::uint32_t(std::min(u, w))) << 32 | std::uint32_t(std::max(u, w)), e});
+    const Topology::Half &h = topo.halves[e], &g = topo.halves[e + 1];
+    if (h.site < 0 || g.site < 0) throw std::logic_error("sweep builder: a site event without its site");
+    const bool h_first = h.site <= g.site;
+    edges.push_back({std::uint64_t(std::uint32_t(h_first ? h.site : g.site)) << 32 | std::uint32_t(h_first ? g.site : h.site),
+                     h_first ? h.vertex0 : g.vertex0, h_first ? g.vertex0 : h.vertex0});
   }
   std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.pair < y.pair; });
   std::vector<Piece> joined, run;
-  joined.reserve(edges.size() + edges.size() / 2);
+  joined.reserve(3 * edges.size());  // at most three pieces an edge: reserved, untouched
   std::vector<Piece>* out = &joined;
   auto keep = [&](Vec2 p, Vec2 q, std::int32_t u, std::int32_t w) {
     if (p.x == q.x && p.y == q.y) return;
@@ -205,24 +207,24 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     if (!hole) return keep(p, q, u, w);
     outside(p, q, *hole, [&](const Vec2& a, const Vec2& b) { keep(a, b, u, w); });
   };
-  auto pieces_of = [&](std::size_t e) {
-    const Topology::Half &h = topo.halves[e], &g = topo.halves[e + 1];
-    const Site &s = S[h.site], &t = S[g.site];
+  auto pieces_of = [&](const Edge& e) {
+    const std::int32_t u = std::int32_t(e.pair >> 32), w = std::int32_t(e.pair & 0xffffffffu);
+    const Site &s = S[u], &t = S[w];
     const sweep::Bisector b(s, t);
     if (b.straight) {
-      if (h.vertex0 < 0 || g.vertex0 < 0)
-        throw std::logic_error("sweep builder: an unbounded diagonal edge between sites " + std::to_string(h.site) +
-                               " and " + std::to_string(g.site));
-      return emit(topo.vertices[h.vertex0], topo.vertices[g.vertex0], h.site, g.site);
+      if (e.v0 < 0 || e.v1 < 0)
+        throw std::logic_error("sweep builder: an unbounded diagonal edge between sites " + std::to_string(u) +
+                               " and " + std::to_string(w));
+      return emit(topo.vertices[e.v0], topo.vertices[e.v1], u, w);
     }
-    double from, to;  // the edge's parameter range, walked from h's vertex to g's
-    if (h.vertex0 >= 0 && g.vertex0 >= 0) {
-      from = b.param(topo.vertices[h.vertex0]), to = b.param(topo.vertices[g.vertex0]);
-    } else if (h.vertex0 >= 0 || g.vertex0 >= 0) {
+    double from, to;  // the edge's parameter range
+    if (e.v0 >= 0 && e.v1 >= 0) {
+      from = b.param(topo.vertices[e.v0]), to = b.param(topo.vertices[e.v1]);
+    } else if (e.v0 >= 0 || e.v1 >= 0) {
       // From its vertex to infinity with the vertex's half-edge's site on its left.
-      const bool from_h = h.vertex0 >= 0;
-      from = b.param(topo.vertices[from_h ? h.vertex0 : g.vertex0]);
-      to = b.left_of_growing(from_h ? s : t, from_h ? t : s) ? from + reach : from - reach;
+      const bool from_u = e.v0 >= 0;
+      from = b.param(topo.vertices[from_u ? e.v0 : e.v1]);
+      to = b.left_of_growing(from_u ? s : t, from_u ? t : s) ? from + reach : from - reach;
     } else {
       from = -reach, to = reach;
     }
@@ -233,14 +235,14 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
       for (double c : {b.mid_p - b.half, b.mid_p + b.half})
         if (c > from && c < to) cuts[n++] = c;
     cuts[n++] = to;
-    for (int i = 0; i + 1 < n; ++i) emit(b.point(cuts[i]), b.point(cuts[i + 1]), h.site, g.site);
+    for (int i = 0; i + 1 < n; ++i) emit(b.point(cuts[i]), b.point(cuts[i + 1]), u, w);
   };
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i + 1;
     while (j < edges.size() && edges[j].pair == edges[i].pair) ++j;
     if (j == i + 1) {  // the usual case
       const std::size_t first = joined.size();
-      pieces_of(edges[i].half);
+      pieces_of(edges[i]);
       std::sort(joined.begin() + first, joined.end(), join_order);
       i = j;
       continue;
@@ -250,7 +252,7 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     int with_pieces = 0;  // two edges' pieces are joined; one edge's are left as they are
     for (std::size_t k = i; k < j; ++k) {
       const std::size_t before = run.size();
-      pieces_of(edges[k].half);
+      pieces_of(edges[k]);
       with_pieces += run.size() > before;
     }
     out = &joined;
