@@ -9,6 +9,7 @@
 #include "linf/diagram/sweep.hpp"
 #include "subdivision.hpp"
 #include "tiles.hpp"
+#include "util/huge_pages.hpp"
 #include "util/progress_meter.hpp"
 
 namespace linf {
@@ -214,6 +215,7 @@ std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const Build
   std::vector<Piece> raw;
   if (sites.sites.size() < 2) return raw;
   raw.reserve(std::size_t(4.5 * double(sites.sites.size())) + 64);
+  huge_pages(raw);
   build_parts(sites, clip, opt, stats,
               [&](std::vector<Piece>& part, const Box&) { raw.insert(raw.end(), part.begin(), part.end()); },
               TileRunner{}, progress);

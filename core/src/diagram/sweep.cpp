@@ -11,32 +11,16 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
-#ifdef __linux__
-#include <sys/mman.h>
-#endif
 
 #include "linf/diagram/builder.hpp"
 #include "diagram/sweep/bisector.hpp"
 #include "diagram/sweep/predicates.hpp"
+#include "util/huge_pages.hpp"
 
 namespace linf {
 namespace {
 
 using sweep::Ratio;
-
-// Asks for huge pages under a large reserved and untouched vector: its first touch then faults
-// once per 2 MB instead of once per 4 KB page (where transparent huge pages are on "madvise").
-template <typename T>
-void huge_pages(std::vector<T>& v) {
-#ifdef __linux__
-  constexpr std::uintptr_t kHuge = std::uintptr_t(1) << 21;
-  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(v.data()) + kHuge - 1) & ~(kHuge - 1);
-  const std::uintptr_t end = reinterpret_cast<std::uintptr_t>(v.data() + v.capacity()) & ~(kHuge - 1);
-  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-#else
-  (void)v;
-#endif
-}
 
 // What the builder reports (the OUTPUT interface of voronoi_builder::construct): half-edges
 // in twin pairs, each with its cell's site and the vertex it starts from; a cell lies on the
