@@ -68,8 +68,10 @@ class SiteGrid {
   }
 
   // Sites whose bounding box comes within L-inf distance r of b (a superset of the sites
-  // within r of b), ascending, each once. `seen` is the caller's scratch, one entry a site.
-  void near(const Box& b, double r, std::vector<int>& out, Paged<std::uint32_t>& seen, std::uint32_t& stamp) const {
+  // within r of b), each once, ascending if `sorted`. `seen` is the caller's scratch, one entry
+  // a site.
+  void near(const Box& b, double r, std::vector<int>& out, Paged<std::uint32_t>& seen, std::uint32_t& stamp,
+            bool sorted = true) const {
     out.clear();
     if (seen.size() != s_.size()) seen.clear(), seen.resize(s_.size()), stamp = 0;
     if (++stamp == 0) std::fill(seen.begin(), seen.end(), 0), stamp = 1;
@@ -83,7 +85,7 @@ class SiteGrid {
         const Box c = box_of(shifted(s_[t], o_));
         if (std::max({c.x1 - b.x2, b.x1 - c.x2, c.y1 - b.y2, b.y1 - c.y2}) <= r) out.push_back(t);
       }
-    std::sort(out.begin(), out.end());
+    if (sorted) std::sort(out.begin(), out.end());
   }
 
  private:
@@ -239,8 +241,15 @@ class Plan {
     Scratch& sc = scratch_[worker];
     const Box F = frame(tj, ti);
     std::vector<int> ids, h;
-    grid_.near(F, 0, h, sc.seen, sc.stamp);
-    ids = h;
+    // The steps' catches overlap (a step is a 32nd of the radius it searches): each site is
+    // taken once, and the catches are left unsorted.
+    if (sc.taken.size() != sites_.size()) sc.taken.clear(), sc.taken.resize(sites_.size()), sc.taken_stamp = 0;
+    if (++sc.taken_stamp == 0) std::fill(sc.taken.begin(), sc.taken.end(), 0), sc.taken_stamp = 1;
+    auto take = [&](int t) {
+      if (sc.taken[t] != sc.taken_stamp) sc.taken[t] = sc.taken_stamp, ids.push_back(t);
+    };
+    grid_.near(F, 0, h, sc.seen, sc.stamp, false);
+    for (int t : h) take(t);
     const double side = std::max(F.x2 - F.x1, F.y2 - F.y1);
     const double floor_step = std::max(1.0, side / 2048);  // at most 4 x 2048 samples a tile
     for (int e = 0; e < 4; ++e) {
@@ -252,8 +261,8 @@ class Plan {
       for (double u = lo; u < hi;) {
         const double l = std::min(hi - u, std::max(floor_step, f / 32));
         const Box step = horizontal ? Box{u, at, u + l, at} : Box{at, u, at, u + l};
-        grid_.near(step, f + l + tau_, h, sc.seen, sc.stamp);  // f(c) + l bounds f over the step
-        ids.insert(ids.end(), h.begin(), h.end());
+        grid_.near(step, f + l + tau_, h, sc.seen, sc.stamp, false);  // f(c) + l bounds f over the step
+        for (int t : h) take(t);
         u += l;
         // The next sample's nearest site is among these: f there is at most f + l.
         f = distance(horizontal ? Vec2{u, at} : Vec2{at, u}, h);
@@ -261,9 +270,8 @@ class Plan {
     }
     const std::size_t n = ids.size();
     for (std::size_t k = 0; k < n; ++k)
-      if (!sites_[ids[k]].is_point()) ids.push_back(sites_[ids[k]].end0), ids.push_back(sites_[ids[k]].end1);
+      if (!sites_[ids[k]].is_point()) take(sites_[ids[k]].end0), take(sites_[ids[k]].end1);
     std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
     return ids;
   }
   // The sweep's grid: about 8 sites a bucket, for sweep_sites' many small queries.
@@ -314,7 +322,10 @@ class Plan {
     return std::size_t(1) << (T_ - Lt);
   }
 
-  struct Scratch { Paged<std::uint32_t> seen; std::uint32_t stamp = 0; };  // one entry a site
+  struct Scratch {  // one entry a site in each
+    Paged<std::uint32_t> seen, taken;
+    std::uint32_t stamp = 0, taken_stamp = 0;
+  };
 
   // The L-inf distance from c to the nearest of `among` (points and axis-parallel segments:
   // their boxes), INFINITY if none.
