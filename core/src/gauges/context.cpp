@@ -247,20 +247,24 @@ struct Hash {
   }
 };
 
-// A segment under symmetry t of the square (a mirror reverses it, so that the region stays on
-// its left), as its eight integers.
-Code code_of(const Seg& s, int t) {
+std::int64_t neg(std::int64_t v) { return -v; }
+
+// Segment (x1, y1) -> (x2, y2) under symmetry t of the square, in place: a swap of the axes and
+// a sign for each; a mirror also reverses the segment, so that the region stays on its left.
+template <typename T>
+void apply_symmetry(int t, T& x1, T& y1, T& x2, T& y2) {
   const bool swap = t & 1, negx = t & 2, negy = t & 4;
-  auto map = [&](Q x, Q y) {
-    if (swap) std::swap(x, y);
-    if (negx) x = neg(x);
-    if (negy) y = neg(y);
-    return std::pair<Q, Q>{x, y};
-  };
-  auto [x1, y1] = map(s.x1, s.y1);
-  auto [x2, y2] = map(s.x2, s.y2);
+  if (swap) std::swap(x1, y1), std::swap(x2, y2);
+  if (negx) x1 = neg(x1), x2 = neg(x2);
+  if (negy) y1 = neg(y1), y2 = neg(y2);
   if ((int(swap) + int(negx) + int(negy)) % 2 == 1) std::swap(x1, x2), std::swap(y1, y2);
-  return code_of({x1, y1, x2, y2});
+}
+
+// A segment under symmetry t, as its eight integers.
+Code code_of(const Seg& s, int t) {
+  Seg m = s;
+  apply_symmetry(t, m.x1, m.y1, m.x2, m.y2);
+  return code_of(m);
 }
 
 // MurmurHash3's 64-bit finaliser: a bijection in which every input bit reaches every output bit.
@@ -284,12 +288,8 @@ void hashes_of(const Seg& s, std::array<std::uint64_t, 8>& sums) {
     // combined through an odd multiplier and mixed (one finaliser a segment and symmetry).
     auto u = [](std::int64_t v) { return std::uint64_t(std::uint32_t(v + (std::int64_t(1) << 30))); };
     for (int t = 0; t < 8; ++t) {
-      const bool swap = t & 1, negx = t & 2, negy = t & 4;
       std::int64_t x1 = s.x1.p, y1 = s.y1.p, x2 = s.x2.p, y2 = s.y2.p;
-      if (swap) std::swap(x1, y1), std::swap(x2, y2);
-      if (negx) x1 = -x1, x2 = -x2;
-      if (negy) y1 = -y1, y2 = -y2;
-      if ((int(swap) + int(negx) + int(negy)) % 2 == 1) std::swap(x1, x2), std::swap(y1, y2);
+      apply_symmetry(t, x1, y1, x2, y2);
       sums[std::size_t(t)] += fmix((u(x1) << 32 | u(y1)) + (u(x2) << 32 | u(y2)) * 0x9E3779B97F4A7C15ull);
     }
     return;
@@ -367,30 +367,22 @@ class PreparedRings {
   void edges(std::size_t p, std::int64_t cx, std::int64_t cy, Window& win) const {
     std::size_t k = first_[p];
     layer_.rings(p, [&](const std::int64_t* xy, std::size_t n, bool) {
+      // The closed ring of m points, point(i) the i-th in walking order, relative to c.
+      auto walk = [&](std::size_t m, auto point) {
+        P a = point(m - 1);
+        a = {2 * a.x - cx, 2 * a.y - cy};
+        for (std::size_t i = 0; i < m; ++i) {
+          const P q = point(i), b{2 * q.x - cx, 2 * q.y - cy};
+          win.edge(a, b);
+          a = b;
+        }
+      };
       const How how = how_[k];
-      auto at = [&](std::size_t j) { return P{2 * xy[2 * j] - cx, 2 * xy[2 * j + 1] - cy}; };
-      if (how == Forward) {
-        P a = at(n - 1);
-        for (std::size_t j = 0; j < n; ++j) {
-          const P b = at(j);
-          win.edge(a, b);
-          a = b;
-        }
-      } else if (how == Backward) {
-        P a = at(0);
-        for (std::size_t j = n; j-- > 0;) {
-          const P b = at(j);
-          win.edge(a, b);
-          a = b;
-        }
-      } else if (how == Copied) {
+      if (how == Forward) walk(n, [&](std::size_t i) { return P{xy[2 * i], xy[2 * i + 1]}; });
+      else if (how == Backward) walk(n, [&](std::size_t i) { return P{xy[2 * (n - 1 - i)], xy[2 * (n - 1 - i) + 1]}; });
+      else if (how == Copied) {
         const std::vector<P>& v = copies_.at(k);
-        P a{2 * v.back().x - cx, 2 * v.back().y - cy};
-        for (const P& q : v) {
-          const P b{2 * q.x - cx, 2 * q.y - cy};
-          win.edge(a, b);
-          a = b;
-        }
+        walk(v.size(), [&](std::size_t i) { return v[i]; });
       }
       ++k;
     });
