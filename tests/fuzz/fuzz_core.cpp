@@ -83,7 +83,7 @@ void ends(const Result& r) {
   if (!e.failure.empty()) fail("the diagram's piece ends", e.failure.c_str());
 }
 
-// Where the sweep-line builder takes the layer (points and axis-parallel edges), its pieces
+// Where the sweep-line builder takes the layer (points, axis-parallel and 45-degree edges), its pieces
 // must be the subdivision's.
 void sweep(const Layout& L, DiagramOptions opt, const Result& subdivision) {
   if (!sweep_handles(subdivision.diagram.sites)) return;

@@ -29,13 +29,45 @@ inline std::string same_pieces(const std::vector<Piece>& subdivision, const std:
   auto same = [&](const Piece& x, const Piece& y) {
     return (near(x.p, y.p) && near(x.q, y.q)) || (near(x.p, y.q) && near(x.q, y.p));
   };
-  auto by_pair = [&](const std::vector<Piece>& v) {
-    std::map<std::pair<int, int>, std::vector<const Piece*>> m;
+  // Far from the origin a builder's rounding can leave one straight edge in two pieces that
+  // just miss being collinear (the subdivision's vertex of a 1/3-slope bisector near 2^30):
+  // pieces of one pair meeting end to end within tol, the joint within tol of the line through
+  // their outer ends, are compared as one.
+  auto by_pair = [&](const std::vector<Piece>& v, std::vector<Piece>& store) {
+    std::map<std::pair<int, int>, std::vector<Piece>> groups;
     for (const Piece& p : v)
-      if (!near(p.p, p.q)) m[{p.a, p.b}].push_back(&p);
+      if (!near(p.p, p.q)) groups[{p.a, p.b}].push_back(p);
+    for (auto& [pair, g] : groups) {
+      for (bool merged = true; merged;) {
+        merged = false;
+        for (std::size_t i = 0; i < g.size() && !merged; ++i)
+          for (std::size_t j = 0; j < g.size() && !merged; ++j) {
+            if (i == j) continue;
+            Piece x = g[i], y = g[j];
+            if (near(x.p, y.p) || near(x.q, y.q)) std::swap(y.p, y.q);  // as x.q -> y.p or x.p -> y.q
+            if (near(x.p, y.q)) std::swap(x, y);
+            if (!near(x.q, y.p)) continue;
+            // The joint within tol (at its scale, as near) of the line through the outer ends.
+            const double ux = y.q.x - x.p.x, uy = y.q.y - x.p.y, wx = x.q.x - x.p.x, wy = x.q.y - x.p.y;
+            const double len = std::hypot(ux, uy), scale = 1 + std::max(std::fabs(x.q.x), std::fabs(x.q.y));
+            if (len == 0 || std::fabs(ux * wy - uy * wx) > tol * scale * len || ux * wx + uy * wy <= 0 ||
+                ux * wx + uy * wy >= len * len)
+              continue;
+            x.q = y.q;
+            g[i] = x;
+            g.erase(g.begin() + std::ptrdiff_t(j));
+            merged = true;
+          }
+      }
+      store.insert(store.end(), g.begin(), g.end());
+    }
+    std::map<std::pair<int, int>, std::vector<const Piece*>> m;
+    for (const Piece& p : store) m[{p.a, p.b}].push_back(&p);
     return m;
   };
-  const auto a = by_pair(subdivision), b = by_pair(sweep);
+  std::vector<Piece> sa, sb;
+  sa.reserve(subdivision.size()), sb.reserve(sweep.size());
+  const auto a = by_pair(subdivision, sa), b = by_pair(sweep, sb);
   auto missing = [&](const decltype(a)& from, const decltype(a)& in, const char* who) -> std::string {
     for (const auto& [pair, pieces] : from) {
       const auto it = in.find(pair);

@@ -7,12 +7,14 @@
 #include <algorithm>
 #include <boost/polygon/voronoi_builder.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <deque>
 #include <stdexcept>
 #include <string>
 #include <tuple>
 
 #include "linf/diagram/builder.hpp"
+#include "linf/geometry/distance.hpp"
 #include "diagram/sweep/bisector.hpp"
 #include "diagram/sweep/predicates.hpp"
 #include "util/huge_pages.hpp"
@@ -33,19 +35,19 @@ struct Topology {
   std::deque<Half> halves;  // twins are 2i and 2i + 1; a deque keeps them in place
   std::vector<Vec2> vertices;
   // Our site of a site event, by its insertion index (Boost's initial_index): a segment's or a
-  // lone point's own; a segment end's the segment's end0 or end1 (Boost keeps one event of a
-  // place where several segments end, any of them). Point sites at one place are one site, the
-  // first (same_place), whichever event stands for them.
-  const SiteList* sites = nullptr;
-  std::vector<std::int32_t> inserted, same_place;
+  // lone point's own; a segment end's the point site there (the segment's end0 or end1, or
+  // where a segment was cut, the point it was cut at; Boost keeps one event of a place where
+  // several segments end, any of them). Point sites at one place are one site, the first
+  // (same_place), whichever event stands for them.
+  std::vector<std::int32_t> inserted, start, end, same_place;
   template <typename Site>
   std::int32_t site_of(const Site& e) const {
-    const std::int32_t i = inserted[e.initial_index()];
-    if (e.is_segment()) return i;
+    const std::size_t k = e.initial_index();
+    if (e.is_segment()) return inserted[k];
     switch (e.source_category()) {
-      case boost::polygon::SOURCE_CATEGORY_SEGMENT_START_POINT: return same_place[(*sites)[i].end0];
-      case boost::polygon::SOURCE_CATEGORY_SEGMENT_END_POINT: return same_place[(*sites)[i].end1];
-      default: return same_place[i];
+      case boost::polygon::SOURCE_CATEGORY_SEGMENT_START_POINT: return same_place[start[k]];
+      case boost::polygon::SOURCE_CATEGORY_SEGMENT_END_POINT: return same_place[end[k]];
+      default: return same_place[inserted[k]];
     }
   }
 
@@ -75,8 +77,10 @@ struct Topology {
 // The part of segment p-q inside the box (Liang-Barsky); false if none. An end cut at a side
 // lies exactly on it, and on an axis-parallel or diagonal segment (every L-inf bisector piece
 // of Manhattan sites) the other coordinate follows exactly: the same cut of the same line from
-// another of its points (a tile's, the far field's) gives the same bits.
-bool clip_segment(Vec2& p, Vec2& q, const Box& b) {
+// another of its points (a tile's, the far field's) gives the same bits. A piece of another
+// slope (with 45-degree sites: 1/3, 3) comes with its line's equation (exact in doubles),
+// which gives the other coordinate from the side alone, equally independent of p and q.
+bool clip_segment(Vec2& p, Vec2& q, const Box& b, const sweep::Line* line = nullptr) {
   double t0 = 0, t1 = 1;
   int s0 = -1, s1 = -1;  // the sides that cut: 0 x = x1, 1 x = x2, 2 y = y1, 3 y = y2
   const double dx = q.x - p.x, dy = q.y - p.y;
@@ -90,9 +94,11 @@ bool clip_segment(Vec2& p, Vec2& q, const Box& b) {
   if (!edge(p.x - b.x1, dx, 0) || !edge(b.x2 - p.x, -dx, 1) || !edge(p.y - b.y1, dy, 2) || !edge(b.y2 - p.y, -dy, 3))
     return false;
   const bool exact = dx == 0 || dy == 0 || std::fabs(dx) == std::fabs(dy);
+  const sweep::Line* line_eq = line;
   auto at = [&](double t, int side) -> Vec2 {
     if (side < 0) return {p.x + t * dx, p.y + t * dy};
     const double line = side == 0 ? b.x1 : side == 1 ? b.x2 : side == 2 ? b.y1 : b.y2;
+    if (!exact && line_eq) return side < 2 ? Vec2{line, line_eq->y_at(line)} : Vec2{line_eq->x_at(line), line};
     if (!exact) return side < 2 ? Vec2{line, p.y + t * dy} : Vec2{p.x + t * dx, line};
     if (side < 2) return {line, dy == 0 ? p.y : p.y + (line - p.x) * (dy / dx)};  // dy / dx is +-1
     return {dx == 0 ? p.x : p.x + (line - p.y) * (dx / dy), line};
@@ -104,15 +110,16 @@ bool clip_segment(Vec2& p, Vec2& q, const Box& b) {
 
 // The parts of segment p-q outside the box `hole` (none, one or two), each handed to f.
 template <typename F>
-void outside(const Vec2& p, const Vec2& q, const Box& hole, F&& f) {
+void outside(const Vec2& p, const Vec2& q, const Box& hole, F&& f, const sweep::Line* line) {
   Vec2 a = p, b = q;
-  if (!clip_segment(a, b, hole)) return f(p, q);
+  if (!clip_segment(a, b, hole, line)) return f(p, q);
   if (!(a.x == p.x && a.y == p.y)) f(p, a);
   if (!(b.x == q.x && b.y == q.y)) f(b, q);
 }
 
-// L-inf distance from v to a site: a point, or an axis-parallel segment (closed).
+// L-inf distance from v to a site: a point, or a segment (closed).
 double linf_distance(const Vec2& v, const Site& s) {
+  if (sweep::is_diagonal(s)) return dist_segment(v.x, v.y, s.a, s.b);
   const double dx = std::max({double(std::min(s.a.x, s.b.x)) - v.x, 0.0, v.x - double(std::max(s.a.x, s.b.x))});
   const double dy = std::max({double(std::min(s.a.y, s.b.y)) - v.y, 0.0, v.y - double(std::max(s.a.y, s.b.y))});
   return std::max(dx, dy);
@@ -120,25 +127,68 @@ double linf_distance(const Vec2& v, const Site& s) {
 
 }  // namespace
 
+namespace {
+// Points, axis-parallel and 45-degree segments.
+bool takes(const Site& s) {
+  return s.is_point() || s.a.x == s.b.x || s.a.y == s.b.y || std::llabs(std::int64_t(s.b.x) - s.a.x) == std::llabs(std::int64_t(s.b.y) - s.a.y);
+}
+}  // namespace
+
 bool sweep_handles(const Sites& sites) {
-  for (std::size_t i = 0; i < sites.sites.size(); ++i) {
-    const Site& s = sites.sites[i];
-    if (!s.is_point() && s.a.x != s.b.x && s.a.y != s.b.y) return false;
-  }
+  for (std::size_t i = 0; i < sites.sites.size(); ++i)
+    if (!takes(sites.sites[i])) return false;
   return true;
 }
 
 namespace {
 
+// For each segment of S, the point sites strictly inside it (one of each place, as same_place
+// has them), ordered from its end0 to its end1; empty if S has no 45-degree segment (a
+// Manhattan layer's merged polygons meet only along shared stretches, so never so). Points by
+// their line through each direction, then along it: one binary search a segment.
+std::vector<std::vector<std::int32_t>> touching_points(const SiteList& S, const std::vector<std::int32_t>& points,
+                                                       const std::vector<std::int32_t>& same_place) {
+  bool any = false;
+  for (const Site& s : S) any = any || sweep::is_diagonal(s);
+  if (!any) return {};
+  // Direction d: 0 horizontal (line y, along x), 1 vertical (x, y), 2 up-right (x - y, x),
+  // 3 down-right (x + y, x).
+  auto key = [](int d, const Point& p) -> std::pair<std::int64_t, std::int64_t> {
+    switch (d) {
+      case 0: return {p.y, p.x};
+      case 1: return {p.x, p.y};
+      case 2: return {std::int64_t(p.x) - p.y, p.x};
+      default: return {std::int64_t(p.x) + p.y, p.x};
+    }
+  };
+  std::vector<std::pair<std::pair<std::int64_t, std::int64_t>, std::int32_t>> by[4];
+  for (std::int32_t p : points)
+    if (same_place[p] == p)
+      for (int d = 0; d < 4; ++d) by[d].push_back({key(d, S[p].a), p});
+  for (auto& v : by) std::sort(v.begin(), v.end());
+  std::vector<std::vector<std::int32_t>> cuts(S.size());
+  for (std::size_t i = 0; i < S.size(); ++i) {
+    const Site& s = S[i];
+    if (s.is_point()) continue;
+    const int d = s.a.y == s.b.y ? 0 : s.a.x == s.b.x ? 1 : (s.b.x > s.a.x) == (s.b.y > s.a.y) ? 2 : 3;
+    const auto ka = key(d, s.a), kb = key(d, s.b);
+    const std::int64_t lo = std::min(ka.second, kb.second), hi = std::max(ka.second, kb.second);
+    const auto& v = by[d];
+    for (auto it = std::upper_bound(v.begin(), v.end(), std::make_pair(std::make_pair(ka.first, lo), INT32_MAX));
+         it != v.end() && it->first.first == ka.first && it->first.second < hi; ++it)
+      cuts[i].push_back(it->second);
+    if (ka.second > kb.second) std::reverse(cuts[i].begin(), cuts[i].end());
+  }
+  return cuts;
+}
+
 // The diagram of S (ends numbered within S) inside clip and outside *hole (if given): pieces
 // with ids into S, joined, in join_order.
 std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole, SweepStats* stats) {
   for (const Site& s : S)
-    if (!s.is_point() && s.a.x != s.b.x && s.a.y != s.b.y)
-      throw std::invalid_argument("sweep builder: only points and axis-parallel segments so far");
+    if (!takes(s)) throw std::invalid_argument("sweep builder: only points, axis-parallel and 45-degree segments");
   boost::polygon::voronoi_builder<std::int32_t, sweep::CoordinateTraits, sweep::Predicates> vb;
   Topology topo;
-  topo.sites = &S;
   // A point at a segment's end comes with the segment; points at one place are one site.
   std::vector<char> at_an_end(S.size(), 0);
   std::vector<std::int32_t> points;
@@ -158,18 +208,38 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   topo.same_place.assign(S.size(), -1);
   for (std::size_t k = 0; k < points.size(); ++k)
     topo.same_place[points[k]] = k > 0 && S[points[k - 1]].a == S[points[k]].a ? topo.same_place[points[k - 1]] : points[k];
+  // Boost's builder takes segments that meet at their ends only. Merged polygons meet where a
+  // corner of one touches an edge of another; on a Manhattan layer the two then share a stretch
+  // of boundary and are one polygon, but a corner touching a 45-degree edge, or a 45-degree
+  // corner touching any edge, stays a point inside a segment. Such a segment is swept in parts
+  // cut at those points; the parts keep the segment's id (edges between them are left out).
+  const std::vector<std::vector<std::int32_t>> cuts = touching_points(S, points, topo.same_place);
+  auto insert = [&](std::int32_t site, std::int32_t from, std::int32_t to) {
+    topo.inserted.push_back(site), topo.start.push_back(from), topo.end.push_back(to);
+  };
   for (std::size_t i = 0; i < S.size(); ++i) {
     const Site& s = S[i];
     if (!s.is_point()) {
-      vb.insert_segment(std::int32_t(s.a.x), std::int32_t(s.a.y), std::int32_t(s.b.x), std::int32_t(s.b.y));
+      std::int32_t from = s.end0;
+      if (!cuts.empty())
+        for (std::int32_t c : cuts[i]) {
+          vb.insert_segment(std::int32_t(S[from].a.x), std::int32_t(S[from].a.y), std::int32_t(S[c].a.x), std::int32_t(S[c].a.y));
+          insert(std::int32_t(i), from, c);
+          from = c;
+        }
+      vb.insert_segment(std::int32_t(S[from].a.x), std::int32_t(S[from].a.y), std::int32_t(s.b.x), std::int32_t(s.b.y));
+      insert(std::int32_t(i), from, s.end1);
     } else if (!at_an_end[i]) {
       vb.insert_point(std::int32_t(s.a.x), std::int32_t(s.a.y));
-    } else {
-      continue;
+      insert(std::int32_t(i), -1, -1);
     }
-    topo.inserted.push_back(std::int32_t(i));
   }
   vb.construct(&topo);
+  auto cut_between = [&](std::int32_t u, std::int32_t w) {
+    if (S[u].is_point() == S[w].is_point()) return false;
+    const std::int32_t seg = S[u].is_point() ? w : u, pt = S[u].is_point() ? u : w;
+    return std::find(cuts[seg].begin(), cuts[seg].end(), pt) != cuts[seg].end();
+  };
 
   // Far enough along any bisector to be outside the box: the bisectors' slopes are at most 1.
   const double reach = 2 * (clip.x2 - clip.x1 + clip.y2 - clip.y1) + std::fabs(clip.x1) + std::fabs(clip.x2) +
@@ -186,6 +256,10 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   for (std::size_t e = 0; e + 1 < topo.halves.size(); e += 2) {
     const Topology::Half &h = topo.halves[e], &g = topo.halves[e + 1];
     if (h.site < 0 || g.site < 0) throw std::logic_error("sweep builder: a site event without its site");
+    if (h.site == g.site) continue;  // two parts of one cut segment
+    // A point inside a segment owns, by the rule (a point before a segment), only the line
+    // through it along which both are nearest: no area, no piece.
+    if (!cuts.empty() && cut_between(h.site, g.site)) continue;
     const bool h_first = h.site <= g.site;
     edges.push_back({std::uint64_t(std::uint32_t(h_first ? h.site : g.site)) << 32 | std::uint32_t(h_first ? g.site : h.site),
                      h_first ? h.vertex0 : g.vertex0, h_first ? g.vertex0 : h.vertex0});
@@ -204,14 +278,54 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     orient(pc);
     out->push_back(pc);
   };
-  auto emit = [&](Vec2 p, Vec2 q, std::int32_t u, std::int32_t w) {
-    if (!clip_segment(p, q, clip)) return;
+  auto emit = [&](Vec2 p, Vec2 q, std::int32_t u, std::int32_t w, const sweep::Line* line = nullptr) {
+    if (!clip_segment(p, q, clip, line)) return;
     if (!hole) return keep(p, q, u, w);
-    outside(p, q, *hole, [&](const Vec2& a, const Vec2& b) { keep(a, b, u, w); });
+    outside(p, q, *hole, [&](const Vec2& a, const Vec2& b) { keep(a, b, u, w); }, line);
+  };
+  // With a 45-degree segment: the chain's parts between the edge's vertices (or towards
+  // infinity with the vertex's half-edge's site on the left), each vertex where it lies on it.
+  auto chain_pieces = [&](const Edge& e, std::int32_t u, std::int32_t w) {
+    const Site &s = S[u], &t = S[w];
+    const sweep::Chain c(s, t);
+    if (c.straight) {
+      if (e.v0 < 0 || e.v1 < 0)
+        throw std::logic_error("sweep builder: an unbounded straight edge between sites " + std::to_string(u) +
+                               " and " + std::to_string(w));
+      const sweep::Line l = sweep::Chain::between_lines(s, t, topo.vertices[e.v0], topo.vertices[e.v1]);
+      return emit(topo.vertices[e.v0], topo.vertices[e.v1], u, w, &l);
+    }
+    using At = std::pair<int, double>;
+    const At far_in{-1, -reach}, far_out{c.n - 1, reach};
+    auto point_at = [&](const At& a) {
+      const Vec2 o = a.first < 0 ? c.v[0] : c.v[a.first];
+      const Vec2 d = a.first < 0 ? c.in : (a.first == c.n - 1 ? c.out : Vec2{c.v[a.first + 1].x - o.x, c.v[a.first + 1].y - o.y});
+      return Vec2{o.x + a.second * d.x, o.y + a.second * d.y};
+    };
+    At a, b;
+    Vec2 pa, pb;
+    if (e.v0 >= 0 && e.v1 >= 0) {
+      pa = topo.vertices[e.v0], pb = topo.vertices[e.v1];
+      a = c.locate(pa), b = c.locate(pb);
+    } else if (e.v0 >= 0 || e.v1 >= 0) {
+      const bool from_u = e.v0 >= 0;
+      pa = topo.vertices[from_u ? e.v0 : e.v1];
+      a = c.locate(pa);
+      b = c.left_of(from_u ? s : t) ? far_out : far_in;
+      pb = point_at(b);
+    } else {
+      a = far_in, b = far_out, pa = point_at(a), pb = point_at(b);
+    }
+    if (b < a) std::swap(a, b), std::swap(pa, pb);
+    Vec2 from = pa;
+    if (c.n > 1)  // a chain of one vertex is a straight line through it: no bend there
+      for (int k = a.first + 1; k <= b.first; ++k) emit(from, c.v[k], u, w, c.line_of(k - 1)), from = c.v[k];
+    emit(from, pb, u, w, c.line_of(b.first));
   };
   auto pieces_of = [&](const Edge& e) {
     const std::int32_t u = std::int32_t(e.pair >> 32), w = std::int32_t(e.pair & 0xffffffffu);
     const Site &s = S[u], &t = S[w];
+    if (sweep::is_diagonal(s) || sweep::is_diagonal(t)) return chain_pieces(e, u, w);
     const sweep::Bisector b(s, t);
     if (b.straight) {
       if (e.v0 < 0 || e.v1 < 0)

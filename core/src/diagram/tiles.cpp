@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "linf/diagram/sweep.hpp"
+#include "linf/geometry/distance.hpp"
 #include "linf/util/paged.hpp"
 #include "tile_jobs.hpp"
 #include "util/progress_meter.hpp"
@@ -328,11 +329,15 @@ class Plan {
   };
 
   // The L-inf distance from c to the nearest of `among` (points and axis-parallel segments:
-  // their boxes), INFINITY if none.
+  // their boxes; a 45-degree segment's box lies nearer than the segment), INFINITY if none.
   double distance(const Vec2& c, const std::vector<int>& among) const {
     double f = INFINITY;
     for (int t : among) {
       const Site u = shifted(sites_[t], origin_);
+      if (!u.is_point() && u.a.x != u.b.x && u.a.y != u.b.y) {  // a 45-degree edge: its box is nearer than it
+        f = std::min(f, dist_segment(c.x, c.y, u.a, u.b));
+        continue;
+      }
       f = std::min(f, std::max({double(std::min(u.a.x, u.b.x)) - c.x, c.x - double(std::max(u.a.x, u.b.x)),
                                 double(std::min(u.a.y, u.b.y)) - c.y, c.y - double(std::max(u.a.y, u.b.y)), 0.0}));
     }

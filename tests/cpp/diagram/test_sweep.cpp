@@ -116,6 +116,27 @@ TEST(Sweep, ManhattanLayoutsAsTheSubdivision) {
   EXPECT_EQ(failed, 0);
 }
 
+TEST(Sweep, OctilinearLayoutsAsTheSubdivision) {
+  // 1,000 merged layouts of boxes and octagons (45-degree cuts), overlapping, touching, nested:
+  // those whose merge keeps every edge axis-parallel or at 45 degrees (a crossing of two
+  // 45-degree edges off the grid is rounded onto it, and such a layer is the subdivision's).
+  int failed = 0, taken = 0;
+  for (std::uint64_t seed = 1; seed <= 1000; ++seed) {
+    const Sites s = sites_of_polygons(merge_polygons(linf::testing::random_layout(seed, linf::testing::Style::Octilinear, 1 + int(seed % 8))));
+    if (!sweep_handles(s)) continue;
+    ++taken;
+    std::string d;
+    try {
+      d = difference(s);
+    } catch (const std::exception& e) {
+      d = std::string("threw ") + e.what();
+    }
+    if (!d.empty() && ++failed <= 5) ADD_FAILURE() << "seed " << seed << ": " << d;
+  }
+  EXPECT_EQ(failed, 0);
+  EXPECT_GT(taken, 500);
+}
+
 TEST(Sweep, DegenerateManhattanAsTheSubdivision) {
   // What a grid makes of L-inf: slivers one DBU wide, boxes meeting at a corner, collinear
   // edges, a checkerboard of unit squares (every ball touches four sites), a staircase (every
@@ -147,6 +168,62 @@ TEST(Sweep, DegenerateManhattanAsTheSubdivision) {
     ASSERT_TRUE(sweep_handles(s)) << "case " << c;
     ASSERT_EQ(difference(s), "") << "case " << c;
   }
+}
+
+TEST(Sweep, DegenerateOctilinearAsTheSubdivision) {
+  // 45-degree edges where they meet the grid worst: diamonds touching at a corner, a diamond's
+  // corner on a box's edge and on another diamond's edge (a point inside a segment), parallel
+  // 45-degree edges one DBU apart, a saw of 45-degree teeth, an octagon frame with an
+  // octagonal hole, a point site on a diagonal's line beyond it; and all of it near 2^30.
+  auto box = [](Coord x1, Coord y1, Coord x2, Coord y2) { return Polygon{{{x1, y1}, {x2, y1}, {x2, y2}, {x1, y2}}, {}}; };
+  auto diamond = [](Coord cx, Coord cy, Coord r) { return Polygon{{{cx, cy - r}, {cx + r, cy}, {cx, cy + r}, {cx - r, cy}}, {}}; };
+  auto octagon = [](Coord x, Coord y, Coord w, Coord c) {
+    return Ring{{x + c, y}, {x + w - c, y}, {x + w, y + c}, {x + w, y + w - c}, {x + w - c, y + w}, {x + c, y + w}, {x, y + w - c}, {x, y + c}};
+  };
+  std::vector<std::vector<Polygon>> cases;
+  cases.push_back({diamond(0, 0, 10), diamond(20, 0, 10), diamond(10, 10, 10)});         // corners on corners
+  cases.push_back({box(0, 0, 40, 10), diamond(20, 20, 10), diamond(35, 20, 5)});           // a corner on an edge
+  cases.push_back({diamond(0, 0, 20), diamond(25, 25, 5)});                                // a corner on a 45-degree edge
+  cases.push_back({Polygon{{{0, 0}, {30, 30}, {30, 40}, {0, 10}}, {}}, Polygon{{{1, -2}, {31, 28}, {40, 28}, {10, -2}}, {}}});
+  Ring saw{{0, 0}};
+  for (int k = 0; k < 8; ++k) saw.push_back({10 * k + 5, 5}), saw.push_back({10 * k + 10, 0});
+  saw.push_back({80, -10}), saw.push_back({0, -10});
+  cases.push_back({Polygon{saw, {}}, box(0, 8, 80, 12)});
+  Ring hole = octagon(20, 20, 60, 15);
+  std::reverse(hole.begin(), hole.end());
+  cases.push_back({Polygon{octagon(0, 0, 100, 30), {hole}}, diamond(50, 50, 8)});
+  cases.push_back({Polygon{{{0, 0}, {10, 10}, {0, 20}}, {}}, box(14, 13, 17, 16), box(-20, 29, -17, 32)});
+  const std::size_t n = cases.size();
+  for (std::size_t c = 0; c < n; ++c) {
+    std::vector<Polygon> far = cases[c];
+    for (Polygon& p : far) {
+      for (Point& v : p.outer) v.x += (Coord(1) << 30) - 1000, v.y -= (Coord(1) << 30) - 1000;
+      for (Ring& h : p.holes)
+        for (Point& v : h) v.x += (Coord(1) << 30) - 1000, v.y -= (Coord(1) << 30) - 1000;
+    }
+    cases.push_back(far);
+  }
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const Sites s = sites_of_polygons(merge_polygons(cases[c]));
+    ASSERT_TRUE(sweep_handles(s)) << "case " << c;
+    ASSERT_EQ(difference(s), "") << "case " << c;
+  }
+}
+
+TEST(Sweep, OctilinearBlocksAsTheSubdivisionAndTheChecker) {
+  int taken = 0;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    Diagram d;
+    d.sites = sites_of_polygons(merge_polygons(linf::testing::block(seed, linf::testing::Style::Octilinear, 6, 5)));
+    if (!sweep_handles(d.sites)) continue;
+    ++taken;
+    ASSERT_EQ(difference(d.sites), "") << "seed " << seed;
+    d.clip = clip_box(d.sites);
+    d.pieces = sweep_pieces(d.sites, d.clip);
+    const CheckReport r = check_diagram(d);
+    ASSERT_TRUE(r.ok()) << "seed " << seed << ": " << (r.messages.empty() ? "" : r.messages[0]);
+  }
+  EXPECT_GE(taken, 3);
 }
 
 TEST(Sweep, ManhattanBlocksAsTheSubdivisionAndTheChecker) {
@@ -229,6 +306,15 @@ TEST(Sweep, TilesGiveTheWholeLayersSweepBitForBit) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed)
     run(sites_of_polygons(merge_polygons(linf::testing::block(seed, linf::testing::Style::Rectilinear, 8, 6))),
         "block " + std::to_string(seed));
+  // 45-degree edges: bisector pieces of slope 1/3 and 3, cut at the tiles' sides.
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    const Sites s = sites_of_polygons(merge_polygons(linf::testing::random_layout(seed, linf::testing::Style::Octilinear, 1 + int(seed % 10))));
+    if (sweep_handles(s)) run(s, "octilinear layout " + std::to_string(seed));
+  }
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const Sites s = sites_of_polygons(merge_polygons(linf::testing::block(seed, linf::testing::Style::Octilinear, 8, 6)));
+    if (sweep_handles(s)) run(s, "octilinear block " + std::to_string(seed));
+  }
   for (std::uint64_t seed = 1; seed <= 4; ++seed) run(points(random_points(seed, 3000, 1 << (8 + 4 * int(seed)))), "points " + std::to_string(seed));
   std::vector<Polygon> row;
   for (int i = 0; i < 600; ++i) row.push_back(linf::testing::box(40 * i, (i % 3) * 7, 40 * i + 24 + i % 5, 30 + (i % 2) * 9));

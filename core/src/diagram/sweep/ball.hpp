@@ -14,33 +14,46 @@
 namespace linf::sweep {
 
 // The eight sides of N_eps's unit ball, (alpha, beta) as c0 + c1 eps: N_eps(u, v) is the
-// largest of alpha u + beta v. Then a segment's line touched by the ball (N_eps of a point's
-// distance to an axis-parallel line is (1 + eps) times the L-inf one): the ball left of (below,
-// right of, above) it.
-constexpr std::int64_t kAlpha[12][2] = {{1, 1},  {1, 1},   {-1, -1}, {-1, -1},  // x dominant, right; left
+// largest of alpha u + beta v. Then a segment's line touched by the ball: an axis-parallel one
+// (N_eps of a point's distance to it is (1 + eps) times the L-inf one) with the ball left of
+// (below, right of, above) it, sides 8-11; a 45-degree one, sides 12-15, lying in direction n
+// from the ball, n = (1, 1), (1, -1), (-1, -1), (-1, 1). The ball reaches 2 r / (1 + 2 eps)
+// in direction n (at the octagon's diagonal vertex): its row is -(1 + 2 eps) n . (c - p) = 2 r,
+// the only sides whose radius column (kGamma) is not -1.
+constexpr std::int64_t kAlpha[16][2] = {{1, 1},  {1, 1},   {-1, -1}, {-1, -1},  // x dominant, right; left
                                         {0, 1},  {0, -1},  {0, 1},   {0, -1},   // y dominant, up; down
-                                        {-1, -1}, {0, 0},  {1, 1},   {0, 0}};   // lines
-constexpr std::int64_t kBeta[12][2] = {{0, 1},  {0, -1},  {0, 1},   {0, -1},
+                                        {-1, -1}, {0, 0},  {1, 1},   {0, 0},    // axis-parallel lines
+                                        {-1, -2}, {-1, -2}, {1, 2},  {1, 2}};   // 45-degree lines
+constexpr std::int64_t kBeta[16][2] = {{0, 1},  {0, -1},  {0, 1},   {0, -1},
                                        {1, 1},  {1, 1},   {-1, -1}, {-1, -1},
-                                       {0, 0},  {-1, -1}, {0, 0},   {1, 1}};
+                                       {0, 0},  {-1, -1}, {0, 0},   {1, 1},
+                                       {-1, -2}, {1, 2},  {1, 2},   {-1, -2}};
+constexpr std::int64_t kGamma[16] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -2, -2, -2, -2};
+constexpr int kSides = 16;
 struct Side {
   Eps alpha, beta;
 };
 inline const Side* sides() {
   static const auto s = [] {
-    std::array<Side, 12> t;
-    for (int k = 0; k < 12; ++k) t[k] = {Eps::of(kAlpha[k][0], kAlpha[k][1]), Eps::of(kBeta[k][0], kBeta[k][1])};
+    std::array<Side, kSides> t;
+    for (int k = 0; k < kSides; ++k) t[k] = {Eps::of(kAlpha[k][0], kAlpha[k][1]), Eps::of(kBeta[k][0], kBeta[k][1])};
     return t;
   }();
   return s.data();
 }
-// Side 8 + segment_side(...): the side of an axis-parallel segment's line that its arc (Boost's
-// site event, possibly inverted) lies on: the right of point0 -> point1.
+// Side 8 + segment_side(...): the side of a segment's line that its arc (Boost's site event,
+// possibly inverted) lies on: the right of point0 -> point1.
 constexpr int kLineLeftOfIt = 8, kLineBelowIt = 9, kLineRightOfIt = 10, kLineAboveIt = 11;
+constexpr int kDiagonal = 12;  // 12 + k: the line in direction kDiagonalN[k] from the ball
+constexpr std::int64_t kDiagonalN[4][2] = {{1, 1}, {1, -1}, {-1, -1}, {-1, 1}};
+inline bool is_diagonal_side(int side) { return side >= kDiagonal; }
 template <typename Site>
 int segment_side(const Site& s) {
   if (s.x0() == s.x1()) return s.y1() > s.y0() ? kLineRightOfIt : kLineLeftOfIt;  // up: right is +x
-  return s.x1() > s.x0() ? kLineBelowIt : kLineAboveIt;
+  if (s.y0() == s.y1()) return s.x1() > s.x0() ? kLineBelowIt : kLineAboveIt;
+  // The arc on the right of d = point1 - point0: the line lies in direction (-dy, dx) from it.
+  const bool nx = s.y1() < s.y0(), ny = s.x1() > s.x0();  // n's signs: +1 where true
+  return kDiagonal + (nx ? (ny ? 0 : 1) : (ny ? 3 : 2));
 }
 
 // The sign of the cross product of (ax, ay) and (bx, by), in 128 bits.
@@ -110,31 +123,39 @@ inline Lin beta_of(int k) { return {{kBeta[k][0], kBeta[k][1]}}; }
 // alpha_i beta_j - alpha_j beta_i, the 2x2 minors of two sides, from a table.
 inline const Poly<3>& minor_of(int i, int j) {
   static const auto m = [] {
-    std::array<Poly<3>, 144> t{};
-    for (int a = 0; a < 12; ++a)
-      for (int b = 0; b < 12; ++b) t[a * 12 + b] = alpha_of(a) * beta_of(b) - alpha_of(b) * beta_of(a);
+    std::array<Poly<3>, kSides * kSides> t{};
+    for (int a = 0; a < kSides; ++a)
+      for (int b = 0; b < kSides; ++b) t[a * kSides + b] = alpha_of(a) * beta_of(b) - alpha_of(b) * beta_of(a);
     return t;
   }();
-  return m[i * 12 + j];
+  return m[i * kSides + j];
 }
 
 // The ball for sides side[0..2] of the three sites (anchors x, y: a point site, or a point of
-// a segment's line, whose side is one of the line forms 8..11), if each point's side is the
-// outermost at its centre. Rows (alpha, beta, -1) . (cx, cy, r) = alpha x + beta y, by
-// Cramer's rule through the 2x2 minors of the sides (the third column is constant): d and the
-// centre are quadratic in eps, the radius cubic.
+// a segment's line, whose side is one of the line forms 8..15), if each point's side is the
+// outermost at its centre. Rows (alpha, beta, gamma) . (cx, cy, r) = alpha x + beta y, by
+// Cramer's rule through the 2x2 minors of the sides (the third column is constant: -1, or -2
+// for a 45-degree line): d and the centre are quadratic in eps, the radius cubic.
 inline bool ball_on_sides(const std::int64_t x[3], const std::int64_t y[3], const int side[3], Ball& out) {
   const Lin a1 = alpha_of(side[0]), b1 = beta_of(side[0]), a2 = alpha_of(side[1]), b2 = beta_of(side[1]),
             a3 = alpha_of(side[2]), b3 = beta_of(side[2]);
   const Poly<3>&m12 = minor_of(side[0], side[1]), &m13 = minor_of(side[0], side[2]), &m23 = minor_of(side[1], side[2]);
-  Poly<3> d = m13 - m12 - m23;
-  const int ds = d.sign();
-  if (ds == 0) return false;
   auto c = [](std::int64_t v) { return Poly<1>{{v}}; };
   const Lin h1 = a1 * c(x[0]) + b1 * c(y[0]), h2 = a2 * c(x[1]) + b2 * c(y[1]), h3 = a3 * c(x[2]) + b3 * c(y[2]);
-  Poly<3> cx = h1 * (b3 - b2) + h2 * (b1 - b3) + h3 * (b2 - b1);
-  Poly<3> cy = h1 * (a2 - a3) + h2 * (a3 - a1) + h3 * (a1 - a2);
+  Poly<3> d, cx, cy;
   Poly<4> r = h1 * m23 - h2 * m13 + h3 * m12;
+  const std::int64_t g1 = kGamma[side[0]], g2 = kGamma[side[1]], g3 = kGamma[side[2]];
+  if (g1 == -1 && g2 == -1 && g3 == -1) {  // no 45-degree line: the usual case, shorter
+    d = m13 - m12 - m23;
+    cx = h1 * (b3 - b2) + h2 * (b1 - b3) + h3 * (b2 - b1);
+    cy = h1 * (a2 - a3) + h2 * (a3 - a1) + h3 * (a1 - a2);
+  } else {
+    d = c(g3) * m12 - c(g2) * m13 + c(g1) * m23;
+    cx = h1 * (b2 * c(g3) - b3 * c(g2)) - b1 * (h2 * c(g3) - h3 * c(g2)) + c(g1) * (h2 * b3 - h3 * b2);
+    cy = a1 * (h2 * c(g3) - h3 * c(g2)) - h1 * (a2 * c(g3) - a3 * c(g2)) + c(g1) * (a2 * h3 - a3 * h2);
+  }
+  const int ds = d.sign();
+  if (ds == 0) return false;
   if (ds < 0) d = -d, cx = -cx, cy = -cy, r = -r;
   if (r.sign() < 0) return false;  // radius 0: a corner, where two edges meet their common end
   for (int a = 0; a < 3; ++a) {
@@ -193,19 +214,21 @@ void sides_at(T u, T v, T m, unsigned& cand, unsigned& pref) {
   if (-v == m) cand |= 0xc0u, pref |= minor(u, 0x40u, 0x80u);
 }
 
-// The L-inf square (eps = 0) with each of three sites on a given side: rows (a, b, -1) .
-// (cx, cy, r) = h, a side's form (a, b) being +-x or +-y and h = a x + b y its site's anchor.
-// Centre (cx, cy) / d and half side r / d, d > 0; false if the three are dependent. Exact in
-// int64 for coordinates within +-2^30 (|d| <= 6).
+// The L-inf square (eps = 0) with each of three sites on a given side: rows (a, b, g) .
+// (cx, cy, r) = h, a side's form (a, b) being +-x or +-y (g = -1) or a 45-degree line's
+// -(+-x +- y) (g = -2), and h = a x + b y its site's anchor. Centre (cx, cy) / d and half side
+// r / d, d > 0; false if the three are dependent. Exact in int64 for coordinates within
+// +-2^30 (|d| <= 24).
 struct Square {
   std::int64_t cx, cy, r, d;
 };
-inline bool square_on(const std::int64_t a[3], const std::int64_t b[3], const std::int64_t h[3], Square& q) {
+inline bool square_on(const std::int64_t a[3], const std::int64_t b[3], const std::int64_t g[3], const std::int64_t h[3],
+                      Square& q) {
   const std::int64_t m12 = a[0] * b[1] - a[1] * b[0], m13 = a[0] * b[2] - a[2] * b[0], m23 = a[1] * b[2] - a[2] * b[1];
-  q.d = m13 - m12 - m23;
+  q.d = g[2] * m12 - g[1] * m13 + g[0] * m23;
   if (q.d == 0) return false;
-  q.cx = h[0] * (b[2] - b[1]) + h[1] * (b[0] - b[2]) + h[2] * (b[1] - b[0]);
-  q.cy = h[0] * (a[1] - a[2]) + h[1] * (a[2] - a[0]) + h[2] * (a[0] - a[1]);
+  q.cx = h[0] * (b[1] * g[2] - b[2] * g[1]) - b[0] * (h[1] * g[2] - h[2] * g[1]) + g[0] * (h[1] * b[2] - h[2] * b[1]);
+  q.cy = a[0] * (h[1] * g[2] - h[2] * g[1]) - h[0] * (a[1] * g[2] - a[2] * g[1]) + g[0] * (a[1] * h[2] - a[2] * h[1]);
   q.r = h[0] * m23 - h[1] * m13 + h[2] * m12;
   if (q.d < 0) q.d = -q.d, q.cx = -q.cx, q.cy = -q.cy, q.r = -q.r;
   return true;
@@ -218,21 +241,24 @@ inline bool square_on(const std::int64_t a[3], const std::int64_t b[3], const st
 // are or-ed into cand and pref (sides_at).
 inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3], const int fixed[3], unsigned cand[3],
                                 unsigned pref[3]) {
-  std::int64_t A[15], B[15], H[15];  // the conditions: the lines' first, then each point's four
+  std::int64_t A[15], B[15], G[15], H[15];  // the conditions: the lines' first, then each point's four
   int n = 0, lines = 0;
-  auto add = [&](int site, std::int64_t a, std::int64_t b) { A[n] = a, B[n] = b, H[n] = a * x[site] + b * y[site], ++n; };
+  auto add = [&](int site, int side) {
+    A[n] = kAlpha[side][0], B[n] = kBeta[side][0], G[n] = kGamma[side], H[n] = A[n] * x[site] + B[n] * y[site], ++n;
+  };
   for (int s = 0; s < 3; ++s)
-    if (fixed[s] >= 0) add(s, kAlpha[fixed[s]][0], kBeta[fixed[s]][0]), ++lines;
+    if (fixed[s] >= 0) add(s, fixed[s]), ++lines;
   for (int s = 0; s < 3; ++s)
     if (fixed[s] < 0)
-      for (int sd = 0; sd < 8; sd += 2) add(s, kAlpha[sd][0], kBeta[sd][0]);  // u = r, -u = r, v = r, -v = r
+      for (int sd = 0; sd < 8; sd += 2) add(s, sd);  // u = r, -u = r, v = r, -v = r
   bool any = false;
   for (int c1 = 0; c1 < (lines >= 1 ? 1 : n); ++c1)
     for (int c2 = c1 + 1; c2 < (lines >= 2 ? 2 : n); ++c2)
       for (int c3 = c2 + 1; c3 < (lines >= 3 ? 3 : n); ++c3) {
-        const std::int64_t a[3] = {A[c1], A[c2], A[c3]}, b[3] = {B[c1], B[c2], B[c3]}, h[3] = {H[c1], H[c2], H[c3]};
+        const std::int64_t a[3] = {A[c1], A[c2], A[c3]}, b[3] = {B[c1], B[c2], B[c3]}, g[3] = {G[c1], G[c2], G[c3]},
+                           h[3] = {H[c1], H[c2], H[c3]};
         Square q;
-        if (!square_on(a, b, h, q) || q.r < 0) continue;
+        if (!square_on(a, b, g, h, q) || q.r < 0) continue;
         bool ok = true;
         for (int s = 0; s < 3 && ok; ++s)
           if (fixed[s] < 0) ok = std::max(std::llabs(q.cx - x[s] * q.d), std::llabs(q.cy - y[s] * q.d)) == q.r;
@@ -245,13 +271,18 @@ inline bool square_vertex_sides(const std::int64_t x[3], const std::int64_t y[3]
 }
 
 // Where a ball touches a segment's line: its centre's x (a horizontal line) or y (a vertical
-// one) must lie within the segment's closed span [lo, hi], or the ball touches the line
-// beside the segment.
+// one), or for a 45-degree line the x of its diagonal vertex, c + r n / (1 + 2 eps), must lie
+// within the segment's closed span [lo, hi] (of x, or of y for a vertical one), or the ball
+// touches the line beside the segment.
 struct Span {
   std::int64_t lo = 0, hi = -1;  // empty: a point site
 };
 inline bool touches_within(const Ball& b, int side, const Span& sp) {
   if (sp.hi < sp.lo) return true;
+  if (is_diagonal_side(side)) {  // x (1 + 2 eps) den = cx (1 + 2 eps) + n_x r
+    const Eps k = Eps::of(1, 2), at = b.cx * k + kDiagonalN[side - kDiagonal][0] * b.r, den = b.den * k;
+    return (at - sp.lo * den).sign() >= 0 && (sp.hi * den - at).sign() >= 0;
+  }
   const Eps& c = (side == kLineBelowIt || side == kLineAboveIt) ? b.cx : b.cy;
   // The constant terms decide unless they tie.
   const std::int64_t lo0 = c.c[0] - sp.lo * b.den.c[0], hi0 = sp.hi * b.den.c[0] - c.c[0];
@@ -266,10 +297,11 @@ inline bool touches_within(const Ball& b, int side, const Span& sp) {
 // turns_left). Most choices end here, in a few int64 operations instead of cubic polynomials.
 // False only if the exact tests would be.
 inline bool limit_may_hold(const std::int64_t x[3], const std::int64_t y[3], const int side[3], const Span* spans) {
-  std::int64_t al[3], be[3], h[3];
-  for (int s = 0; s < 3; ++s) al[s] = kAlpha[side[s]][0], be[s] = kBeta[side[s]][0], h[s] = al[s] * x[s] + be[s] * y[s];
+  std::int64_t al[3], be[3], ga[3], h[3];
+  for (int s = 0; s < 3; ++s)
+    al[s] = kAlpha[side[s]][0], be[s] = kBeta[side[s]][0], ga[s] = kGamma[side[s]], h[s] = al[s] * x[s] + be[s] * y[s];
   Square q;
-  if (!square_on(al, be, h, q)) return true;  // singular at eps = 0: only the higher orders decide
+  if (!square_on(al, be, ga, h, q)) return true;  // singular at eps = 0: only the higher orders decide
   const std::int64_t cx = q.cx, cy = q.cy, r = q.r, d = q.d;
   if (r < 0) return false;
   std::int64_t tx[3], ty[3];  // where the square touches each site, times d
@@ -278,6 +310,11 @@ inline bool limit_may_hold(const std::int64_t x[3], const std::int64_t y[3], con
     if (side[a] < 8) {
       const std::int64_t u = cx - tx[a], v = cy - ty[a];
       if (std::max(std::max(u, -u), std::max(v, -v)) > r) return false;
+      continue;
+    }
+    if (is_diagonal_side(side[a])) {  // the square's corner towards the line
+      tx[a] = cx + kDiagonalN[side[a] - kDiagonal][0] * r, ty[a] = cy + kDiagonalN[side[a] - kDiagonal][1] * r;
+      if (spans && spans[a].lo <= spans[a].hi && (tx[a] < spans[a].lo * d || tx[a] > spans[a].hi * d)) return false;
       continue;
     }
     const bool horizontal_line = side[a] == kLineBelowIt || side[a] == kLineAboveIt;
@@ -289,23 +326,37 @@ inline bool limit_may_hold(const std::int64_t x[3], const std::int64_t y[3], con
 }
 
 // Whether the ball meets the three sites counter-clockwise (bottom arc, middle, top): where
-// it touches a point is the point, a horizontal line (cx, y0), a vertical one (x0, cy). An
-// event whose middle arc vanishes meets them clockwise (as the three points of Boost's point
-// case must turn); touches that coincide (a corner, an edge at its own end) decide nothing.
+// it touches a point is the point, a horizontal line (cx, y0), a vertical one (x0, cy), a
+// 45-degree one its diagonal vertex c + r n / (1 + 2 eps). An event whose middle arc vanishes
+// meets them clockwise (as the three points of Boost's point case must turn); touches that
+// coincide (a corner, an edge at its own end) decide nothing.
 inline bool turns_left(const std::int64_t x[3], const std::int64_t y[3], const int side[3], const Ball& b) {
   std::int64_t lx[3], ly[3];  // the constant terms first: they decide unless they tie
+  bool diagonal = false;
   for (int a = 0; a < 3; ++a) {
+    if (is_diagonal_side(side[a])) {
+      const std::int64_t* n = kDiagonalN[side[a] - kDiagonal];
+      lx[a] = b.cx.c[0] + n[0] * b.r.c[0], ly[a] = b.cy.c[0] + n[1] * b.r.c[0], diagonal = true;
+      continue;
+    }
     lx[a] = side[a] == kLineBelowIt || side[a] == kLineAboveIt ? b.cx.c[0] : x[a] * b.den.c[0];
     ly[a] = side[a] == kLineLeftOfIt || side[a] == kLineRightOfIt ? b.cy.c[0] : y[a] * b.den.c[0];
   }
   const int turn = orientation128(lx[1] - lx[0], ly[1] - ly[0], lx[2] - lx[0], ly[2] - ly[0]);
   if (turn != 0) return turn > 0;
-  Eps tx[3], ty[3];  // times den
+  Eps tx[3], ty[3];  // times den, and (1 + 2 eps) with a 45-degree line among them
+  const Eps k = Eps::of(1, 2);
   for (int a = 0; a < 3; ++a) {
+    if (is_diagonal_side(side[a])) {
+      const std::int64_t* n = kDiagonalN[side[a] - kDiagonal];
+      tx[a] = b.cx * k + n[0] * b.r, ty[a] = b.cy * k + n[1] * b.r;
+      continue;
+    }
     const bool horizontal_line = side[a] == kLineBelowIt || side[a] == kLineAboveIt;
     const bool vertical_line = side[a] == kLineLeftOfIt || side[a] == kLineRightOfIt;
     tx[a] = horizontal_line ? b.cx : x[a] * b.den;
     ty[a] = vertical_line ? b.cy : y[a] * b.den;
+    if (diagonal) tx[a] = tx[a] * k, ty[a] = ty[a] * k;
   }
   return sign_of_cross(tx[1] - tx[0], ty[1] - ty[0], tx[2] - tx[0], ty[2] - ty[0]) > 0;
 }

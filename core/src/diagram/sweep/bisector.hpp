@@ -13,11 +13,15 @@
 //   diagonals through their lines' crossing; the sweep gives both its ends (the segments'
 //   strips cross in a bounded box), and the piece is the straight segment between them.
 // Vertical cases are the horizontal ones with the axes swapped.
+// With a 45-degree segment the bisector is a polyline (Chain, below).
 #pragma once
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <algorithm>
+#include <array>
+#include <utility>
 
 #include "linf/geometry/site.hpp"
 
@@ -96,6 +100,147 @@ struct Bisector {
     const double f = at(along_y ? ry : rx), g = along_y ? rx : ry;
     if (g == f) return !left_of_growing(other, s);
     return along_y ? g < f : g > f;
+  }
+};
+
+// The line a x + b y = c, its coefficients small integers and c an integer of at most 2^34
+// (exact in doubles): where a piece of it is cut at a tile's side, the other coordinate
+// follows from the side alone.
+struct Line {
+  double a = 0, b = 0, c = 0;
+  double y_at(double x) const { return (c - a * x) / b; }
+  double x_at(double y) const { return (c - b * y) / a; }
+};
+
+// Whether s is a segment neither horizontal nor vertical (the sweep takes only 45-degree ones).
+inline bool is_diagonal(const Site& s) { return !s.is_point() && s.a.x != s.b.x && s.a.y != s.b.y; }
+
+// The bisector of two sites of which one is a 45-degree segment, as a polyline: v[0..n) with a
+// ray into v[0] along -in (from infinity) and one out of v[n - 1] along `out`, or no rays and
+// the piece between the edge's two vertices (`straight`). No L-inf tie covers an area here: a
+// 45-degree line's L-inf distance has gradient (+-1/2, +-1/2), a point's and an axis-parallel
+// line's (+-1, 0) or (0, +-1), so the sites' distance functions agree on lines only.
+// * A point P and the line m . q = c (m = (+-1, +-1)), P on the side m . q < c at D = c - m . P:
+//   with u = m_x (x - P.x), v = m_y (y - P.y) the bisector is (-D/2, D/2), (D/4, D/4),
+//   (D/2, -D/2) with both rays along (-1, -1): a U around P (along that direction both
+//   distances grow alike). P on the line (a segment's own end): the line P + t m (the L-inf
+//   nearest point of a 45-degree line is unique, reached along m).
+// * Two parallel 45-degree lines: the middle line. Two lines that cross (a 45-degree one and
+//   any other): a line through the crossing, bounded by the segments' strips; the sweep gives
+//   both its ends.
+struct Chain {
+  Vec2 v[3];
+  Line parts[2];  // the lines of v[0]-v[1] and v[1]-v[2], of slope 1/3 or 3 (the rays are diagonal)
+  int n = 0;
+  Vec2 in{0, 0}, out{0, 0};  // unit steps of the rays
+  bool straight = false;
+  // Whether the chain, walked from its in-ray to its out-ray, has `point` (the point site, or
+  // one of two parallel segments) on its left; point_on_chain: the point lies on the chain (a
+  // segment's own end), and counts as the segment's other side.
+  bool left_is_point = false, point_on_chain = false;
+  const Site* point = nullptr;
+
+  Chain(const Site& s, const Site& t) {
+    if (s.is_point() || t.is_point()) {
+      point_line(s.is_point() ? s : t, s.is_point() ? t : s);
+      return;
+    }
+    if (!is_diagonal(s) || !is_diagonal(t) || line_m(s) != line_m(t)) {
+      straight = true;  // lines that cross
+      return;
+    }
+    // Parallel: m . q = c, c half way between the lines, walked along (m_y, -m_x), which has m
+    // on its left.
+    const auto m = line_m(s);
+    const double c = 0.5 * (double(m[0] * s.a.x + m[1] * s.a.y) + double(m[0] * t.a.x + m[1] * t.a.y));
+    n = 1;
+    v[0] = {0.5 * c * double(m[0]), 0.5 * c * double(m[1])};
+    in = out = {double(m[1]), double(-m[0])};
+    point = &s;  // stands for s here: s on the left where its line lies beyond the middle
+    left_is_point = double(m[0] * s.a.x + m[1] * s.a.y) > c;
+  }
+
+  // m (as +-1, +-1) of a 45-degree segment's line: its normal with m_x = 1.
+  static std::array<std::int64_t, 2> line_m(const Site& d) {
+    const std::int64_t dx = d.b.x - d.a.x, dy = d.b.y - d.a.y;
+    return {1, (dx > 0) == (dy > 0) ? -1 : 1};
+  }
+
+  void point_line(const Site& p, const Site& seg) {
+    auto m = line_m(seg);
+    const std::int64_t c = m[0] * seg.a.x + m[1] * seg.a.y;
+    std::int64_t D = c - (m[0] * p.a.x + m[1] * p.a.y);
+    point = &p;
+    if (D == 0) {  // P + t m, walked along m: the segment's other end lies on one side
+      n = 1;
+      v[0] = {double(p.a.x), double(p.a.y)};
+      in = out = {double(m[0]), double(m[1])};
+      point_on_chain = true;
+      const Point other = seg.a == p.a ? seg.b : seg.a;
+      // The segment on the left of m where (other - P) . (-m_y, m_x) > 0; P counts as the
+      // other side.
+      left_is_point = double(other.x - p.a.x) * double(-m[1]) + double(other.y - p.a.y) * double(m[0]) < 0;
+      return;
+    }
+    if (D < 0) m = {-m[0], -m[1]}, D = -D;
+    const double d = double(D), px = double(p.a.x), py = double(p.a.y), mx = double(m[0]), my = double(m[1]);
+    auto at = [&](double u, double w) { return Vec2{px + mx * u, py + my * w}; };
+    n = 3;
+    v[0] = at(-0.5 * d, 0.5 * d), v[1] = at(0.25 * d, 0.25 * d), v[2] = at(0.5 * d, -0.5 * d);
+    // u + 3 v = D and 3 u + v = D.
+    parts[0] = {mx, 3 * my, d + mx * px + 3 * my * py};
+    parts[1] = {3 * mx, my, d + 3 * mx * px + my * py};
+    in = {mx, my};        // into v[0] along +(1, 1) in (u, v)
+    out = {-mx, -my};     // out of v[2] along (-1, -1)
+    // In (u, v) the walk goes clockwise round P (P on its right); a reflection with
+    // m_x m_y = -1 turns it.
+    left_is_point = m[0] * m[1] < 0;
+  }
+
+  // The line of part k (0 .. n - 2, the inner parts), or none (a diagonal ray: exact anyway).
+  const Line* line_of(int k) const { return k >= 0 && k + 1 < n ? &parts[k] : nullptr; }
+
+  // The bisector of two segments' lines that cross, one of them at 45 degrees: with each
+  // line's L-inf distance |a x + b y - c| / w (w = 1 axis-parallel, 2 diagonal), the line
+  // w_t (a_s x + b_s y - c_s) = +-w_s (a_t x + b_t y - c_t) through the edge's two vertices.
+  static Line between_lines(const Site& s, const Site& t, const Vec2& p, const Vec2& q) {
+    auto form = [](const Site& g, double& a, double& b, double& w) {
+      if (g.a.y == g.b.y) a = 0, b = 1, w = 1;
+      else if (g.a.x == g.b.x) a = 1, b = 0, w = 1;
+      else a = 1, b = double(line_m(g)[1]), w = 2;
+      return a * double(g.a.x) + b * double(g.a.y);
+    };
+    double as, bs, ws, at, bt, wt;
+    const double cs = form(s, as, bs, ws), ct = form(t, at, bt, wt);
+    Line best;
+    double off = INFINITY;
+    for (double sg : {1.0, -1.0}) {
+      const Line l{wt * as - sg * ws * at, wt * bs - sg * ws * bt, wt * cs - sg * ws * ct};
+      const double e = std::fabs(l.a * p.x + l.b * p.y - l.c) + std::fabs(l.a * q.x + l.b * q.y - l.c);
+      if (e < off) off = e, best = l;
+    }
+    return best;
+  }
+
+  // Whether site s lies on the left of the chain walked from in to out.
+  bool left_of(const Site& s) const { return &s == point ? left_is_point : !left_is_point; }
+
+  // Where q lies along the chain: (part, t), part -1 the in-ray (t <= 0, distance before
+  // v[0]), 0 .. n - 2 the inner parts, n - 1 the out-ray; ordered as the walk.
+  std::pair<int, double> locate(const Vec2& q) const {
+    int best = -1;
+    double best_d = INFINITY, best_t = 0;
+    auto consider = [&](int part, const Vec2& a, const Vec2& dir, double lo, double hi) {
+      const double len2 = dir.x * dir.x + dir.y * dir.y;
+      double t = ((q.x - a.x) * dir.x + (q.y - a.y) * dir.y) / len2;
+      t = std::clamp(t, lo, hi);
+      const double ex = a.x + t * dir.x - q.x, ey = a.y + t * dir.y - q.y, d = ex * ex + ey * ey;
+      if (d < best_d) best_d = d, best = part, best_t = t;
+    };
+    consider(-1, v[0], in, -INFINITY, 0);
+    for (int i = 0; i + 1 < n; ++i) consider(i, v[i], {v[i + 1].x - v[i].x, v[i + 1].y - v[i].y}, 0, 1);
+    consider(n - 1, v[n - 1], out, 0, INFINITY);
+    return {best, best_t};
   }
 };
 

@@ -143,8 +143,54 @@ struct Predicates {
     template <typename Point>
     static Ratio segment_arc(const Site& s, const Point& p) {
       if (s.x0() == s.x1()) return Ratio(Eps(std::int64_t(p.x()) - s.x0()), Eps(2));
+      if (s.y0() != s.y1()) return diagonal_arc(s, p);
       const std::int64_t dy = std::int64_t(p.y()) - s.y0();
       return Ratio(s.x1() > s.x0() ? -dy : dy);  // the arc is on the right of point0 -> point1
+    }
+
+    // A 45-degree line lying in direction n from its arc (segment_side): at q = p - (t, 0) the
+    // N_eps distance to it is (1 + 2 eps) w(q) / 2, w = n . (point0 - q), so
+    // t = (1 + 2 eps) w(p) / (2 + 2 eps - n_x (1 + 2 eps)): w(p) times 1 + 2 eps or over 3 + 4 eps.
+    template <typename Point>
+    static Ratio diagonal_arc(const Site& s, const Point& p) {
+      const std::int64_t* n = kDiagonalN[segment_side(s) - kDiagonal];
+      const std::int64_t w = n[0] * (std::int64_t(s.x0()) - p.x()) + n[1] * (std::int64_t(s.y0()) - p.y());
+      return n[0] > 0 ? Ratio(Eps::of(w, 2 * w), Eps(1)) : Ratio(Eps::of(w, 2 * w), Eps::of(3, 4));
+    }
+    // d t / d y of that arc: -n_y (1 + 2 eps) over the same denominator.
+    static Ratio diagonal_arc_slope(const Site& s) {
+      const std::int64_t* n = kDiagonalN[segment_side(s) - kDiagonal];
+      return n[0] > 0 ? Ratio(Eps::of(-n[1], -2 * n[1]), Eps(1)) : Ratio(Eps::of(-n[1], -2 * n[1]), Eps::of(3, 4));
+    }
+
+    // A point P and a 45-degree segment S, p on S's arc side. Boost's shortcuts for this case
+    // are Euclidean; this is the rule they stand for. t_P(y) (arc_distance) is the largest of
+    // linear functions of y, t_S(y) is linear, so E = t_S - t_P is concave and P's arc is in
+    // front (E > 0) on one interval (y_lo, y_hi): the beach line reads S, P, S upwards, the
+    // node (P, S) is the crossing at y_hi, (S, P) the one at y_lo. Where E <= 0, the sign of E's
+    // slope just above p.y (t_S's less the largest slope among the sides attaining t_P) tells
+    // whether the interval lies above p (rising) or below it. No slope is 0: no side of N_eps is
+    // parallel to a line through two integer points.
+    template <typename Point>
+    static bool diagonal_ps(const Site& point, const Site& seg, const Point& p, bool reverse) {
+      const std::int64_t dx = std::int64_t(p.x()) - point.x0(), dy = std::int64_t(p.y()) - point.y0();
+      if (dx == 0) return dy > 0;  // P's arc is the ray at its own height: y_lo = y_hi = P.y
+      const Eps one_eps = Eps::of(1, 1);
+      Ratio tp, slope;
+      bool any = false;
+      for (int k = 0; k < 8; ++k) {
+        if (k == 2 || k == 3) continue;  // facing left: no root
+        const Side& f = sides()[k];
+        const Ratio r(dx * f.alpha + dy * f.beta, one_eps + f.alpha), m(f.beta, one_eps + f.alpha);
+        const int c = any ? compare(r, tp) : 1;
+        if (c > 0) tp = r, slope = m, any = true;
+        else if (c == 0 && compare(m, slope) > 0) slope = m;
+      }
+      const int e = compare(segment_arc(seg, p), tp);  // the sign of E at p.y
+      if (e > 0) return reverse;                       // inside: above y_lo, below y_hi
+      const bool rising = compare(diagonal_arc_slope(seg), slope) > 0;
+      if (rising) return false;                        // below the interval (or at y_lo)
+      return e < 0 || reverse;                         // above it; at y_hi: on (P, S)'s crossing
     }
 
     enum { kLess = -1, kUndefined = 0, kMore = 1 };
@@ -176,6 +222,11 @@ struct Predicates {
 
     template <typename Point>
     static bool ps(const Site& point, const Site& seg, const Point& p, bool reverse) {
+      if (seg.x0() != seg.x1() && seg.y0() != seg.y1()) {
+        if (orientation(seg.x0(), seg.y0(), seg.x1(), seg.y1(), p.x(), p.y()) != -1)  // not on its arc's side
+          return !seg.is_inverse();
+        return diagonal_ps(point, seg, p, reverse);
+      }
       const int fast = fast_ps(point, seg, p, reverse);
       if (fast != kUndefined) return fast == kLess;
       Ratio tp;
@@ -277,8 +328,8 @@ struct Predicates {
         const Site& t = *s[a];
         x[a] = t.x0(), y[a] = t.y0();
         fixed[a] = t.is_segment() ? segment_side(t) : -1;
-        if (t.is_segment())
-          spans[a] = t.y0() == t.y1() ? Span{std::min<std::int64_t>(t.x0(), t.x1()), std::max<std::int64_t>(t.x0(), t.x1())}
+        if (t.is_segment())  // x, but y for a vertical segment
+          spans[a] = t.x0() != t.x1() ? Span{std::min<std::int64_t>(t.x0(), t.x1()), std::max<std::int64_t>(t.x0(), t.x1())}
                                       : Span{std::min<std::int64_t>(t.y0(), t.y1()), std::max<std::int64_t>(t.y0(), t.y1())};
       }
       Ball b;
