@@ -4,7 +4,8 @@
 #   klayout -b -r tests/klayout/check_sweep.py -rd input=FILE -rd layer=L/D [-rd cell=NAME]
 #           [-rd fallback=1]
 # fallback=1: a layer the sweep does not take (slanted edges): asked for the sweep, the stage
-# builds with the subdivision, and says so.
+# builds with the subdivision, and says so. input=drawn-slanted: such a layer drawn here (a bus,
+# a 45-degree bend and a wire bent at 42 degrees), layer 1/0.
 import os
 import sys
 import time
@@ -21,7 +22,17 @@ import linf_opc_core as core  # noqa: E402
 from linf_opc import layout  # noqa: E402
 from linf_opc.polygons import core_input  # noqa: E402
 
-if arg("input").lower().endswith(".glp"):  # a contest clip: KLayout does not read GLP
+if arg("input") == "drawn-slanted":
+    ly = pya.Layout()
+    ly.dbu = 0.001
+    shapes = ly.create_cell("SLANTED").shapes(ly.layer(1, 0))
+    for k in range(4):
+        shapes.insert(pya.Box(0, 120 * k, 2000, 120 * k + 60))
+    shapes.insert(pya.Polygon([pya.Point(x, y) for x, y in
+                               [(2400, 0), (2480, 0), (2480, 300), (2880, 700), (2880, 1000), (2800, 1000), (2800, 733), (2400, 333)]]))
+    shapes.insert(pya.Polygon([pya.Point(x, y) for x, y in
+                               [(3000, 0), (3300, 0), (3633, 300), (3633, 380), (3300, 80), (3000, 80)]]))
+elif arg("input").lower().endswith(".glp"):  # a contest clip: KLayout does not read GLP
     from linf_opc import glp
     ly = glp.read(arg("input"))
 else:

@@ -8,6 +8,7 @@
 #include <boost/polygon/voronoi_builder.hpp>
 #include <cmath>
 #include <cstdlib>
+#include <array>
 #include <deque>
 #include <stdexcept>
 #include <string>
@@ -182,6 +183,52 @@ std::vector<std::vector<std::int32_t>> touching_points(const SiteList& S, const 
   return cuts;
 }
 
+// For each segment, the segment in line with it beyond its end0 and beyond its end1 with
+// nothing else at that end on one side of their line, or -1; empty unless `any` (a layer with
+// 45-degree segments: on a Manhattan layer two segments in line at a point are a corner where
+// two boxes touch, with a segment on each side).
+std::vector<std::array<std::int32_t, 2>> segments_in_line(const SiteList& S, const std::vector<std::int32_t>& same_place,
+                                                         bool any) {
+  for (const Site& s : S) any = any || sweep::is_diagonal(s);
+  if (!any) return {};
+  struct End {
+    std::int32_t place, seg;
+    int end, dir;  // dir: the segment's direction from the place, 0..7 counter-clockwise from +x
+  };
+  auto dir_of = [](std::int64_t dx, std::int64_t dy) {
+    const int sx = (dx > 0) - (dx < 0), sy = (dy > 0) - (dy < 0);
+    static const int table[3][3] = {{5, 4, 3}, {6, -1, 2}, {7, 0, 1}};  // [sx + 1][sy + 1]
+    return table[sx + 1][sy + 1];
+  };
+  std::vector<End> ends;
+  for (std::size_t i = 0; i < S.size(); ++i) {
+    const Site& s = S[i];
+    if (s.is_point()) continue;
+    ends.push_back({same_place[s.end0], std::int32_t(i), 0, dir_of(std::int64_t(s.b.x) - s.a.x, std::int64_t(s.b.y) - s.a.y)});
+    ends.push_back({same_place[s.end1], std::int32_t(i), 1, dir_of(std::int64_t(s.a.x) - s.b.x, std::int64_t(s.a.y) - s.b.y)});
+  }
+  std::sort(ends.begin(), ends.end(), [](const End& x, const End& y) { return std::tie(x.place, x.dir, x.seg) < std::tie(y.place, y.dir, y.seg); });
+  std::vector<std::array<std::int32_t, 2>> out(S.size(), {-1, -1});
+  for (std::size_t i = 0; i < ends.size();) {
+    std::size_t j = i;
+    unsigned dirs = 0;
+    while (j < ends.size() && ends[j].place == ends[i].place) dirs |= 1u << ends[j].dir, ++j;
+    for (std::size_t a = i; a < j; ++a)
+      for (std::size_t b = a + 1; b < j; ++b) {
+        const End &x = ends[a], &y = ends[b];
+        if ((x.dir + 4) % 8 != y.dir) continue;
+        // Another segment strictly on one side of the line (directions between them one way
+        // round), or on both: the point's regions there have width, or the sides are closed.
+        bool left = false, right = false;
+        for (int k = 1; k < 4; ++k) left = left || (dirs >> ((x.dir + k) % 8) & 1u), right = right || (dirs >> ((x.dir + 4 + k) % 8) & 1u);
+        if (left && right) continue;
+        out[x.seg][x.end] = y.seg, out[y.seg][y.end] = x.seg;
+      }
+    i = j;
+  }
+  return out;
+}
+
 // The diagram of S (ends numbered within S) inside clip and outside *hole (if given): pieces
 // with ids into S, joined, in join_order.
 std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole, SweepStats* stats) {
@@ -235,6 +282,19 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     }
   }
   vb.construct(&topo);
+  // Two segments in line that end at one point, nothing else beside them there on a side (a
+  // polygon pinched at a 45-degree corner): the point's region on that side is the ray
+  // perpendicular to them, of no width. The rule gives the ray to the point; the subdivision
+  // (and the files) have the two segments meet along it. Its edges with either segment are
+  // those of the two segments (their bisector: that perpendicular).
+  const std::vector<std::array<std::int32_t, 2>> in_line = segments_in_line(S, topo.same_place, !cuts.empty());
+  auto relabel = [&](std::int32_t seg, std::int32_t pt) {
+    if (in_line.empty() || S[seg].is_point() || !S[pt].is_point()) return pt;
+    const std::array<std::int32_t, 2>& o = in_line[seg];
+    if (o[0] >= 0 && topo.same_place[S[seg].end0] == pt) return o[0];
+    if (o[1] >= 0 && topo.same_place[S[seg].end1] == pt) return o[1];
+    return pt;
+  };
   auto cut_between = [&](std::int32_t u, std::int32_t w) {
     if (S[u].is_point() == S[w].is_point()) return false;
     const std::int32_t seg = S[u].is_point() ? w : u, pt = S[u].is_point() ? u : w;
@@ -260,8 +320,10 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     // A point inside a segment owns, by the rule (a point before a segment), only the line
     // through it along which both are nearest: no area, no piece.
     if (!cuts.empty() && cut_between(h.site, g.site)) continue;
-    const bool h_first = h.site <= g.site;
-    edges.push_back({std::uint64_t(std::uint32_t(h_first ? h.site : g.site)) << 32 | std::uint32_t(h_first ? g.site : h.site),
+    std::int32_t hs = h.site, gs = g.site;
+    if (!in_line.empty()) hs = relabel(gs, hs), gs = relabel(hs, gs);
+    const bool h_first = hs <= gs;
+    edges.push_back({std::uint64_t(std::uint32_t(h_first ? hs : gs)) << 32 | std::uint32_t(h_first ? gs : hs),
                      h_first ? h.vertex0 : g.vertex0, h_first ? g.vertex0 : h.vertex0});
   }
   std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.pair < y.pair; });

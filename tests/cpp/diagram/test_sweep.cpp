@@ -174,7 +174,8 @@ TEST(Sweep, DegenerateOctilinearAsTheSubdivision) {
   // 45-degree edges where they meet the grid worst: diamonds touching at a corner, a diamond's
   // corner on a box's edge and on another diamond's edge (a point inside a segment), parallel
   // 45-degree edges one DBU apart, a saw of 45-degree teeth, an octagon frame with an
-  // octagonal hole, a point site on a diagonal's line beyond it; and all of it near 2^30.
+  // octagonal hole, a point site on a diagonal's line beyond it, two edges in line at a
+  // pinch; and all of it near 2^30.
   auto box = [](Coord x1, Coord y1, Coord x2, Coord y2) { return Polygon{{{x1, y1}, {x2, y1}, {x2, y2}, {x1, y2}}, {}}; };
   auto diamond = [](Coord cx, Coord cy, Coord r) { return Polygon{{{cx, cy - r}, {cx + r, cy}, {cx, cy + r}, {cx - r, cy}}, {}}; };
   auto octagon = [](Coord x, Coord y, Coord w, Coord c) {
@@ -193,13 +194,23 @@ TEST(Sweep, DegenerateOctilinearAsTheSubdivision) {
   std::reverse(hole.begin(), hole.end());
   cases.push_back({Polygon{octagon(0, 0, 100, 30), {hole}}, diamond(50, 50, 8)});
   cases.push_back({Polygon{{{0, 0}, {10, 10}, {0, 20}}, {}}, box(14, 13, 17, 16), box(-20, 29, -17, 32)});
+  // A fuzzer finding: merged, a 45-degree edge ends where a vertical one goes on in line: the
+  // point there has a region of no width left of them (the two segments meet along it).
+  cases.push_back({Polygon{{{12, 95}, {10, 95}, {10, 95}, {3338, 95}, {3338, 2399}, {63, 2399}, {63, 3423}, {12, 3423}}, {}},
+                   Polygon{{{1291, 95}, {10, 95}, {10, 1430}, {124, 1430}, {124, 95}, {65, 95}, {65, 592}, {50, 607}, {50, 607}, {50, 95}, {117, 95}, {117, 1888}, {1291, 1888}}, {}},
+                   Polygon{{{3082, 2911}, {6923, 2911}, {6923, 2912}, {3082, 2912}}, {}},
+                   Polygon{{{1290, 351}, {229, 351}, {10, 132}, {10, 132}, {152, 132}, {152, 97}, {90, 97}, {90, 864}, {1290, 864}}, {}}});
   const std::size_t n = cases.size();
-  for (std::size_t c = 0; c < n; ++c) {
+  for (std::size_t c = 0; c < n; ++c) {  // to the corner (2^30, -2^30), 100 DBU inside
     std::vector<Polygon> far = cases[c];
+    Coord hi_x = -(Coord(1) << 30), lo_y = Coord(1) << 30;
+    for (const Polygon& p : far)
+      for (const Point& v : p.outer) hi_x = std::max(hi_x, v.x), lo_y = std::min(lo_y, v.y);
+    const Coord dx = (Coord(1) << 30) - 100 - hi_x, dy = -(Coord(1) << 30) + 100 - lo_y;
     for (Polygon& p : far) {
-      for (Point& v : p.outer) v.x += (Coord(1) << 30) - 1000, v.y -= (Coord(1) << 30) - 1000;
+      for (Point& v : p.outer) v.x += dx, v.y += dy;
       for (Ring& h : p.holes)
-        for (Point& v : h) v.x += (Coord(1) << 30) - 1000, v.y -= (Coord(1) << 30) - 1000;
+        for (Point& v : h) v.x += dx, v.y += dy;
     }
     cases.push_back(far);
   }

@@ -48,9 +48,16 @@ struct Bisector {
       straight = true;
       return;
     }
-    // Parallel: the middle line (collinear edges never share a region).
+    // Parallel: the middle line. In line, they meet only where they share an end whose
+    // point has a region of no width beside them (sweep.cpp, segments_in_line): along the
+    // perpendicular there.
     along_y = !hs;
     mid_f = hs ? 0.5 * double(s.a.y + t.a.y) : 0.5 * double(s.a.x + t.a.x);
+    if (hs ? s.a.y == t.a.y : s.a.x == t.a.x) {
+      const Point& end = (s.a == t.a || s.a == t.b) ? s.a : s.b;
+      along_y = hs;
+      mid_f = hs ? double(end.x) : double(end.y);
+    }
   }
 
   void points(const Point& s, const Point& t) {
@@ -153,6 +160,16 @@ struct Chain {
     // on its left.
     const auto m = line_m(s);
     const double c = 0.5 * (double(m[0] * s.a.x + m[1] * s.a.y) + double(m[0] * t.a.x + m[1] * t.a.y));
+    if (m[0] * s.a.x + m[1] * s.a.y == m[0] * t.a.x + m[1] * t.a.y) {  // in line: as Bisector's
+      const Point& end = (s.a == t.a || s.a == t.b) ? s.a : s.b;
+      const Point& mid_s = s.a == end ? s.b : s.a;  // s lies along its line from the shared end
+      n = 1;
+      v[0] = {double(end.x), double(end.y)};
+      in = out = {double(m[0]), double(m[1])};
+      point = &s;
+      left_is_point = double(mid_s.x - end.x) * double(-m[1]) + double(mid_s.y - end.y) * double(m[0]) > 0;
+      return;
+    }
     n = 1;
     v[0] = {0.5 * c * double(m[0]), 0.5 * c * double(m[1])};
     in = out = {double(m[1]), double(-m[0])};
