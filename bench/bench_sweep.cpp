@@ -1,7 +1,7 @@
 // The sweep-line builder against Boost.Polygon's Euclidean construct_voronoi and the
 // subdivision builder, on the same point sites, one thread each, in one run.
 //
-//   build/bench_sweep [runs=3] [max_points=1000000]      generated point sets and wires
+//   build/bench_sweep [runs=3] [max_points=1000000]      generated point sets and wires (some with 45-degree jogs)
 //   build/bench_sweep runs NAME FILE [NAME FILE ...]       layers (bench/bench_sweep_layers.py)
 //   build/bench_sweep tiles runs [NAME FILE ...]           the sweep in tiles, 1 and 2 threads
 //   build/bench_sweep memory WIRES TILE THREADS             one build, for /usr/bin/time -v
@@ -74,6 +74,21 @@ std::vector<Polygon> wires(std::size_t n, std::uint64_t seed) {
   const std::vector<Point> c = wire_corners(4 * n, seed);
   std::vector<Polygon> out;
   for (std::size_t i = 0; i + 3 < c.size(); i += 4) out.push_back({{c[i], c[i + 1], c[i + 2], c[i + 3]}, {}});
+  return out;
+}
+
+// The same rows with a 45-degree jog in each wire: up 16 DBU along a diagonal band of the
+// wire's width (an octilinear layer: 8n edges, a quarter of them at 45 degrees).
+std::vector<Polygon> bent_wires(std::size_t n, std::uint64_t seed) {
+  const std::vector<Point> c = wire_corners(4 * n, seed);
+  std::vector<Polygon> out;
+  for (std::size_t i = 0; i + 3 < c.size(); i += 4) {
+    const Coord x = c[i].x, y = c[i].y, l = c[i + 1].x - x, w = std::min<Coord>(c[i + 2].y - y, 32), h = 16;
+    const Coord a = (l - h) / 2;
+    out.push_back({{{x, y}, {x + a, y}, {x + a + h, y + h}, {x + l, y + h}, {x + l, y + h + w}, {x + a + h, y + h + w},
+                    {x + a, y + w}, {x, y + w}},
+                   {}});
+  }
   return out;
 }
 
@@ -253,5 +268,7 @@ int main(int argc, char** argv) {
   // The wires: 10^5 and 10^6 rectangles (the subdivision only on the smaller: minutes).
   if (most >= 100000) row("generated wires", sites_of_polygons(merge_polygons(wires(100000, 4))), runs);
   if (most >= 1000000) row("generated wires", sites_of_polygons(merge_polygons(wires(1000000, 4))), runs, false);
+  // An octilinear layer: the same wires, each with a 45-degree jog.
+  if (most >= 100000) row("generated wires with 45-degree jogs", sites_of_polygons(merge_polygons(bent_wires(100000, 4))), runs);
   return 0;
 }

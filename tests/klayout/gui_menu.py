@@ -369,8 +369,7 @@ def flow_step():
         built = voronoi["builder"]
         expect(voronoi["check"]["searched_pieces"] == voronoi["pieces"] > 0,
                "check=full chosen: every piece searched (%s)" % voronoi["check"])
-        expect(built == "subdivision", "asked for the sweep, the subdivision built the sample (45-degree edges): %s"
-               % built)
+        expect(built == "sweep", "the sweep built the sample (axis-parallel and 45-degree edges): %s" % built)
         li = ly.find_layer(L, 220)
         expect(li is not None and cell.shapes(li).size() > 0, "the flow drew the windows")
         # The printed contours (euv) of the windows: edges inside the windows' boxes, in the group.

@@ -6,9 +6,9 @@
 
 #include <algorithm>
 #include <boost/polygon/voronoi_builder.hpp>
+#include <array>
 #include <cmath>
 #include <cstdlib>
-#include <array>
 #include <deque>
 #include <stdexcept>
 #include <string>
@@ -81,7 +81,7 @@ struct Topology {
 // another of its points (a tile's, the far field's) gives the same bits. A piece of another
 // slope (with 45-degree sites: 1/3, 3) comes with its line's equation (exact in doubles),
 // which gives the other coordinate from the side alone, equally independent of p and q.
-bool clip_segment(Vec2& p, Vec2& q, const Box& b, const sweep::Line* line = nullptr) {
+bool clip_segment(Vec2& p, Vec2& q, const Box& b, const sweep::Line* eq = nullptr) {
   double t0 = 0, t1 = 1;
   int s0 = -1, s1 = -1;  // the sides that cut: 0 x = x1, 1 x = x2, 2 y = y1, 3 y = y2
   const double dx = q.x - p.x, dy = q.y - p.y;
@@ -95,11 +95,10 @@ bool clip_segment(Vec2& p, Vec2& q, const Box& b, const sweep::Line* line = null
   if (!edge(p.x - b.x1, dx, 0) || !edge(b.x2 - p.x, -dx, 1) || !edge(p.y - b.y1, dy, 2) || !edge(b.y2 - p.y, -dy, 3))
     return false;
   const bool exact = dx == 0 || dy == 0 || std::fabs(dx) == std::fabs(dy);
-  const sweep::Line* line_eq = line;
   auto at = [&](double t, int side) -> Vec2 {
     if (side < 0) return {p.x + t * dx, p.y + t * dy};
     const double line = side == 0 ? b.x1 : side == 1 ? b.x2 : side == 2 ? b.y1 : b.y2;
-    if (!exact && line_eq) return side < 2 ? Vec2{line, line_eq->y_at(line)} : Vec2{line_eq->x_at(line), line};
+    if (!exact && eq) return side < 2 ? Vec2{line, eq->y_at(line)} : Vec2{eq->x_at(line), line};
     if (!exact) return side < 2 ? Vec2{line, p.y + t * dy} : Vec2{p.x + t * dx, line};
     if (side < 2) return {line, dy == 0 ? p.y : p.y + (line - p.x) * (dy / dx)};  // dy / dx is +-1
     return {dx == 0 ? p.x : p.x + (line - p.y) * (dx / dy), line};
@@ -126,13 +125,12 @@ double linf_distance(const Vec2& v, const Site& s) {
   return std::max(dx, dy);
 }
 
-}  // namespace
-
-namespace {
 // Points, axis-parallel and 45-degree segments.
 bool takes(const Site& s) {
-  return s.is_point() || s.a.x == s.b.x || s.a.y == s.b.y || std::llabs(std::int64_t(s.b.x) - s.a.x) == std::llabs(std::int64_t(s.b.y) - s.a.y);
+  return s.is_point() || s.a.x == s.b.x || s.a.y == s.b.y ||
+         std::llabs(std::int64_t(s.b.x) - s.a.x) == std::llabs(std::int64_t(s.b.y) - s.a.y);
 }
+
 }  // namespace
 
 bool sweep_handles(const Sites& sites) {
