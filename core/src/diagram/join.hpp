@@ -29,9 +29,18 @@ inline void join_run(const Piece* first, const Piece* last, std::vector<char>& u
   auto close = [](const Vec2& p, const Vec2& q) {
     return std::fabs(p.x - q.x) <= 1e-11 * (1 + std::fabs(p.x)) && std::fabs(p.y - q.y) <= 1e-11 * (1 + std::fabs(p.y));
   };
+  // Collinear: turning by at most 1e-9, or with the shorter piece's far end within a few units
+  // in the last place of the coordinates (2e-15 of them, 9 ulp) of the other's line: a sweep
+  // tile cuts a piece of slope 1/3 (45-degree sites) at its side with the other coordinate
+  // rounded, and a short part of it near 2^30 then turns by more than 1e-9 (the fuzzer found
+  // one 11 DBU long). Not more: a true bend 1e-4 DBU wide stays one far out
+  // (Diagram.ShallowSegmentMovesWithItsInput).
   auto collinear = [](const Piece& x, const Piece& y) {
     const double ux = x.q.x - x.p.x, uy = x.q.y - x.p.y, vx = y.q.x - y.p.x, vy = y.q.y - y.p.y;
-    return std::fabs(ux * vy - uy * vx) <= 1e-9 * std::hypot(ux, uy) * std::hypot(vx, vy);
+    const double cross = std::fabs(ux * vy - uy * vx), lu = std::hypot(ux, uy), lv = std::hypot(vx, vy);
+    if (cross <= 1e-9 * lu * lv) return true;
+    const double scale = 1 + std::max({std::fabs(x.p.x), std::fabs(x.p.y), std::fabs(x.q.x), std::fabs(x.q.y)});
+    return cross <= 2e-15 * scale * std::max(lu, lv);
   };
   // Two cells can both have one Voronoi edge on their boundary (a sliver between two nearly
   // coincident cuts): the builder then cuts out a piece, or a part of it, twice. Such

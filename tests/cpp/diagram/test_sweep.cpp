@@ -326,6 +326,18 @@ TEST(Sweep, TilesGiveTheWholeLayersSweepBitForBit) {
     const Sites s = sites_of_polygons(merge_polygons(linf::testing::block(seed, linf::testing::Style::Octilinear, 8, 6)));
     if (sweep_handles(s)) run(s, "octilinear block " + std::to_string(seed));
   }
+  // The same near -2^30: a cut's rounding turns a short piece of slope 1/3 by more than the
+  // join's 1e-9 there (a fuzzer finding; the join allows the ends' rounding far out).
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    std::vector<Polygon> far = linf::testing::random_layout(seed, linf::testing::Style::Octilinear, 1 + int(seed % 10));
+    for (Polygon& p : far) {
+      for (Point& v : p.outer) v.x -= (Coord(1) << 30) - 1000, v.y -= (Coord(1) << 30) - 1000;
+      for (Ring& h : p.holes)
+        for (Point& v : h) v.x -= (Coord(1) << 30) - 1000, v.y -= (Coord(1) << 30) - 1000;
+    }
+    const Sites s = sites_of_polygons(merge_polygons(far));
+    if (sweep_handles(s)) run(s, "octilinear layout near -2^30 " + std::to_string(seed));
+  }
   for (std::uint64_t seed = 1; seed <= 4; ++seed) run(points(random_points(seed, 3000, 1 << (8 + 4 * int(seed)))), "points " + std::to_string(seed));
   std::vector<Polygon> row;
   for (int i = 0; i < 600; ++i) row.push_back(linf::testing::box(40 * i, (i % 3) * 7, 40 * i + 24 + i % 5, 30 + (i % 2) * 9));
