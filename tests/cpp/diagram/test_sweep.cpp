@@ -32,6 +32,34 @@ std::string difference(const Sites& s) {
 
 Sites points(const std::vector<Point>& p) { return sites_of_plain(p, {}); }
 
+// difference(s), or what either builder threw.
+std::string difference_or_what_threw(const Sites& s) {
+  try {
+    return difference(s);
+  } catch (const std::exception& e) {
+    return std::string("threw ") + e.what();
+  }
+}
+
+// The polygons moved by (dx, dy).
+std::vector<Polygon> moved(std::vector<Polygon> v, Coord dx, Coord dy) {
+  for (Polygon& p : v) {
+    for (Point& q : p.outer) q.x += dx, q.y += dy;
+    for (Ring& h : p.holes)
+      for (Point& q : h) q.x += dx, q.y += dy;
+  }
+  return v;
+}
+
+// Each case, merged, taken by the sweep and built as by the subdivision.
+void expect_as_the_subdivision(const std::vector<std::vector<Polygon>>& cases) {
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    const Sites s = sites_of_polygons(merge_polygons(cases[c]));
+    ASSERT_TRUE(sweep_handles(s)) << "case " << c;
+    ASSERT_EQ(difference(s), "") << "case " << c;
+  }
+}
+
 std::vector<Point> random_points(std::uint64_t seed, int n, int range) {
   std::mt19937_64 rng(seed);
   std::uniform_int_distribution<int> c(-range, range);
@@ -105,12 +133,7 @@ TEST(Sweep, ManhattanLayoutsAsTheSubdivision) {
   int failed = 0;
   for (std::uint64_t seed = 1; seed <= 1000; ++seed) {
     const Sites s = sites_of_polygons(merge_polygons(linf::testing::random_layout(seed, linf::testing::Style::Rectilinear, 1 + int(seed % 10))));
-    std::string d;
-    try {
-      d = difference(s);
-    } catch (const std::exception& e) {
-      d = std::string("threw ") + e.what();
-    }
+    const std::string d = difference_or_what_threw(s);
     if (!d.empty() && ++failed <= 5) ADD_FAILURE() << "seed " << seed << ": " << d;
   }
   EXPECT_EQ(failed, 0);
@@ -125,12 +148,7 @@ TEST(Sweep, OctilinearLayoutsAsTheSubdivision) {
     const Sites s = sites_of_polygons(merge_polygons(linf::testing::random_layout(seed, linf::testing::Style::Octilinear, 1 + int(seed % 8))));
     if (!sweep_handles(s)) continue;
     ++taken;
-    std::string d;
-    try {
-      d = difference(s);
-    } catch (const std::exception& e) {
-      d = std::string("threw ") + e.what();
-    }
+    const std::string d = difference_or_what_threw(s);
     if (!d.empty() && ++failed <= 5) ADD_FAILURE() << "seed " << seed << ": " << d;
   }
   EXPECT_EQ(failed, 0);
@@ -157,17 +175,9 @@ TEST(Sweep, DegenerateManhattanAsTheSubdivision) {
   stairs.push_back({st, {}});
   cases.push_back(stairs);
   const std::size_t n = cases.size();
-  for (std::size_t c = 0; c < n; ++c) {  // the same far out: coordinates near 2^30
-    std::vector<Polygon> far = cases[c];
-    for (Polygon& p : far)
-      for (Point& v : p.outer) v.x += (Coord(1) << 30) - 1000, v.y -= (Coord(1) << 30) - 1000;
-    cases.push_back(far);
-  }
-  for (std::size_t c = 0; c < cases.size(); ++c) {
-    const Sites s = sites_of_polygons(merge_polygons(cases[c]));
-    ASSERT_TRUE(sweep_handles(s)) << "case " << c;
-    ASSERT_EQ(difference(s), "") << "case " << c;
-  }
+  for (std::size_t c = 0; c < n; ++c)  // the same far out: coordinates near 2^30
+    cases.push_back(moved(cases[c], (Coord(1) << 30) - 1000, -(Coord(1) << 30) + 1000));
+  expect_as_the_subdivision(cases);
 }
 
 TEST(Sweep, DegenerateOctilinearAsTheSubdivision) {
@@ -206,19 +216,9 @@ TEST(Sweep, DegenerateOctilinearAsTheSubdivision) {
     Coord hi_x = -(Coord(1) << 30), lo_y = Coord(1) << 30;
     for (const Polygon& p : far)
       for (const Point& v : p.outer) hi_x = std::max(hi_x, v.x), lo_y = std::min(lo_y, v.y);
-    const Coord dx = (Coord(1) << 30) - 100 - hi_x, dy = -(Coord(1) << 30) + 100 - lo_y;
-    for (Polygon& p : far) {
-      for (Point& v : p.outer) v.x += dx, v.y += dy;
-      for (Ring& h : p.holes)
-        for (Point& v : h) v.x += dx, v.y += dy;
-    }
-    cases.push_back(far);
+    cases.push_back(moved(far, (Coord(1) << 30) - 100 - hi_x, -(Coord(1) << 30) + 100 - lo_y));
   }
-  for (std::size_t c = 0; c < cases.size(); ++c) {
-    const Sites s = sites_of_polygons(merge_polygons(cases[c]));
-    ASSERT_TRUE(sweep_handles(s)) << "case " << c;
-    ASSERT_EQ(difference(s), "") << "case " << c;
-  }
+  expect_as_the_subdivision(cases);
 }
 
 TEST(Sweep, OctilinearBlocksAsTheSubdivisionAndTheChecker) {
@@ -329,13 +329,9 @@ TEST(Sweep, TilesGiveTheWholeLayersSweepBitForBit) {
   // The same near -2^30: a cut's rounding turns a short piece of slope 1/3 by more than the
   // join's 1e-9 there (a fuzzer finding; the join allows the ends' rounding far out).
   for (std::uint64_t seed = 1; seed <= 40; ++seed) {
-    std::vector<Polygon> far = linf::testing::random_layout(seed, linf::testing::Style::Octilinear, 1 + int(seed % 10));
-    for (Polygon& p : far) {
-      for (Point& v : p.outer) v.x -= (Coord(1) << 30) - 1000, v.y -= (Coord(1) << 30) - 1000;
-      for (Ring& h : p.holes)
-        for (Point& v : h) v.x -= (Coord(1) << 30) - 1000, v.y -= (Coord(1) << 30) - 1000;
-    }
-    const Sites s = sites_of_polygons(merge_polygons(far));
+    const Coord off = -(Coord(1) << 30) + 1000;
+    const Sites s = sites_of_polygons(merge_polygons(
+        moved(linf::testing::random_layout(seed, linf::testing::Style::Octilinear, 1 + int(seed % 10)), off, off)));
     if (sweep_handles(s)) run(s, "octilinear layout near -2^30 " + std::to_string(seed));
   }
   for (std::uint64_t seed = 1; seed <= 4; ++seed) run(points(random_points(seed, 3000, 1 << (8 + 4 * int(seed)))), "points " + std::to_string(seed));
