@@ -1,6 +1,6 @@
 // The balls of the sweep's circle events: a ball of N_eps = L-inf + eps L1 (eps.hpp) touching
-// three sites, each point on one of the octagon's sides, each axis-parallel segment's line from
-// the side its arc faces. The sides are found from the L-inf squares (eps = 0) through the
+// three sites, each point on one of the octagon's sides, each segment's line (axis-parallel or
+// at 45 degrees) from the side its arc faces. The sides are found from the L-inf squares (eps = 0) through the
 // sites; for each choice the centre solves a 3x3 linear system, exactly.
 #pragma once
 #include <algorithm>

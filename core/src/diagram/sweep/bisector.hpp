@@ -15,12 +15,12 @@
 // Vertical cases are the horizontal ones with the axes swapped.
 // With a 45-degree segment the bisector is a polyline (Chain, below).
 #pragma once
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
-#include <algorithm>
-#include <array>
 #include <utility>
 
 #include "linf/geometry/site.hpp"
@@ -142,9 +142,9 @@ struct Chain {
   Vec2 in{0, 0}, out{0, 0};  // unit steps of the rays
   bool straight = false;
   // Whether the chain, walked from its in-ray to its out-ray, has `point` (the point site, or
-  // one of two parallel segments) on its left; point_on_chain: the point lies on the chain (a
-  // segment's own end), and counts as the segment's other side.
-  bool left_is_point = false, point_on_chain = false;
+  // one of two parallel segments) on its left; the other site is on the other side. A point on
+  // the chain (a segment's own end) counts as lying opposite its segment.
+  bool left_is_point = false;
   const Site* point = nullptr;
 
   Chain(const Site& s, const Site& t) {
@@ -192,7 +192,6 @@ struct Chain {
       n = 1;
       v[0] = {double(p.a.x), double(p.a.y)};
       in = out = {double(m[0]), double(m[1])};
-      point_on_chain = true;
       const Point other = seg.a == p.a ? seg.b : seg.a;
       // The segment on the left of m where (other - P) . (-m_y, m_x) > 0; P counts as the
       // other side.

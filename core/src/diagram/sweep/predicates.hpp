@@ -11,7 +11,7 @@
 // ball of N_eps: its rightmost point is the vertex (1/(1+eps), 0), so an event has the y of
 // its centre.
 //
-// Points and axis-parallel segments (sweep.hpp); the balls of the circle events are ball.hpp's.
+// Points, axis-parallel and 45-degree segments (sweep.hpp); the balls of the circle events are ball.hpp's.
 #pragma once
 #include <boost/polygon/detail/voronoi_structures.hpp>
 #include <algorithm>
