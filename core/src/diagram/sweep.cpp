@@ -142,14 +142,12 @@ bool sweep_handles(const Sites& sites) {
 namespace {
 
 // For each segment of S, the point sites strictly inside it (one of each place, as same_place
-// has them), ordered from its end0 to its end1; empty if S has no 45-degree segment (a
+// has them), ordered from its end0 to its end1; empty unless S has a 45-degree segment (a
 // Manhattan layer's merged polygons meet only along shared stretches, so never so). Points by
 // their line through each direction, then along it: one binary search a segment.
 std::vector<std::vector<std::int32_t>> touching_points(const SiteList& S, const std::vector<std::int32_t>& points,
-                                                       const std::vector<std::int32_t>& same_place) {
-  bool any = false;
-  for (const Site& s : S) any = any || sweep::is_diagonal(s);
-  if (!any) return {};
+                                                       const std::vector<std::int32_t>& same_place, bool diagonal) {
+  if (!diagonal) return {};
   // Direction d: 0 horizontal (line y, along x), 1 vertical (x, y), 2 up-right (x - y, x),
   // 3 down-right (x + y, x).
   auto key = [](int d, const Point& p) -> std::pair<std::int64_t, std::int64_t> {
@@ -182,13 +180,12 @@ std::vector<std::vector<std::int32_t>> touching_points(const SiteList& S, const 
 }
 
 // For each segment, the segment in line with it beyond its end0 and beyond its end1 with
-// nothing else at that end on one side of their line, or -1; empty unless `any` (a layer with
-// 45-degree segments: on a Manhattan layer two segments in line at a point are a corner where
+// nothing else at that end on one side of their line, or -1; empty unless S has a 45-degree
+// segment (`diagonal`: on a Manhattan layer two segments in line at a point are a corner where
 // two boxes touch, with a segment on each side).
 std::vector<std::array<std::int32_t, 2>> segments_in_line(const SiteList& S, const std::vector<std::int32_t>& same_place,
-                                                         bool any) {
-  for (const Site& s : S) any = any || sweep::is_diagonal(s);
-  if (!any) return {};
+                                                         bool diagonal) {
+  if (!diagonal) return {};
   struct End {
     std::int32_t place, seg;
     int end, dir;  // dir: the segment's direction from the place, 0..7 counter-clockwise from +x
@@ -258,7 +255,9 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   // of boundary and are one polygon, but a corner touching a 45-degree edge, or a 45-degree
   // corner touching any edge, stays a point inside a segment. Such a segment is swept in parts
   // cut at those points; the parts keep the segment's id (edges between them are left out).
-  const std::vector<std::vector<std::int32_t>> cuts = touching_points(S, points, topo.same_place);
+  bool diagonal = false;
+  for (const Site& s : S) diagonal = diagonal || sweep::is_diagonal(s);
+  const std::vector<std::vector<std::int32_t>> cuts = touching_points(S, points, topo.same_place, diagonal);
   auto insert = [&](std::int32_t site, std::int32_t from, std::int32_t to) {
     topo.inserted.push_back(site), topo.start.push_back(from), topo.end.push_back(to);
   };
@@ -285,7 +284,7 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   // perpendicular to them, of no width. The rule gives the ray to the point; the subdivision
   // (and the files) have the two segments meet along it. Its edges with either segment are
   // those of the two segments (their bisector: that perpendicular).
-  const std::vector<std::array<std::int32_t, 2>> in_line = segments_in_line(S, topo.same_place, !cuts.empty());
+  const std::vector<std::array<std::int32_t, 2>> in_line = segments_in_line(S, topo.same_place, diagonal);
   auto relabel = [&](std::int32_t seg, std::int32_t pt) {
     if (in_line.empty() || S[seg].is_point() || !S[pt].is_point()) return pt;
     const std::array<std::int32_t, 2>& o = in_line[seg];

@@ -334,7 +334,7 @@ class Plan {
     double f = INFINITY;
     for (int t : among) {
       const Site u = shifted(sites_[t], origin_);
-      if (!u.is_point() && u.a.x != u.b.x && u.a.y != u.b.y) {  // a 45-degree edge: its box is nearer than it
+      if (!rectilinear(u)) {  // a 45-degree edge: its box is nearer than it
         f = std::min(f, dist_segment(c.x, c.y, u.a, u.b));
         continue;
       }
