@@ -8,6 +8,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <numeric>
 
@@ -58,6 +59,16 @@ struct DistFn {
   }
 };
 
+// A segment neither axis-parallel nor at 45 degrees: its L1 tie-break is the farther of its
+// ends' L1 distances (dist_site_l1), which is its own end's in the cone where that end is its
+// L-inf nearest point (the end comes first there) but far above its true L1 distance inside
+// its strip, so the builder never lets that tie-break stand in for an L-inf comparison within
+// the allowance (Model::dominated).
+inline bool steep_edge(const Site& s) {
+  return !s.is_point() && s.a.x != s.b.x && s.a.y != s.b.y &&
+         std::llabs(std::int64_t(s.b.x) - s.a.x) != std::llabs(std::int64_t(s.b.y) - s.a.y);
+}
+
 inline DistFn make_distfn(const Site& s, Norm norm) {
   std::int64_t normals[6][2];
   int k = 0;
@@ -68,7 +79,10 @@ inline DistFn make_distfn(const Site& s, Norm norm) {
     const std::int64_t q[4][2] = {{1, 1}, {1, -1}, {-1, 1}, {-1, -1}};
     for (auto& v : q) normals[k][0] = v[0], normals[k][1] = v[1], ++k;
   }
-  if (!s.is_point()) {
+  // A steep edge's L1 tie-break: the farther of its ends', the same four normals with the
+  // nearer end's support.
+  const bool steep_l1 = norm == Norm::L1 && steep_edge(s);
+  if (!s.is_point() && !steep_l1) {
     std::int64_t dx = s.b.x - s.a.x, dy = s.b.y - s.a.y;
     std::int64_t g = std::gcd(dx < 0 ? -dx : dx, dy < 0 ? -dy : dy);
     dx /= g, dy /= g;
@@ -84,7 +98,8 @@ inline DistFn make_distfn(const Site& s, Norm norm) {
   for (int i = 0; i < k; ++i) {
     const double nx = double(normals[i][0]), ny = double(normals[i][1]);
     const double hq = norm == Norm::Linf ? std::fabs(nx) + std::fabs(ny) : std::max(std::fabs(nx), std::fabs(ny));
-    const double hs = std::max(nx * double(s.a.x) + ny * double(s.a.y), nx * double(s.b.x) + ny * double(s.b.y));
+    const double ha = nx * double(s.a.x) + ny * double(s.a.y), hb = nx * double(s.b.x) + ny * double(s.b.y);
+    const double hs = steep_l1 ? std::min(ha, hb) : std::max(ha, hb);
     f.piece[i] = {nx / hq, ny / hq, -hs / hq};
   }
   return f;

@@ -78,15 +78,14 @@ inline void join_run(const Piece* first, const Piece* last, std::vector<char>& u
       grown = false;
       for (std::size_t j = 0; j < n; ++j) {
         if (used[j] || !collinear(cur, first[j])) continue;
-        Piece o = first[j];
-        if (overlap(cur, o)) {
-          cover(cur, o);
-        } else {
-          if (close(cur.q, o.q) || close(cur.p, o.p)) std::swap(o.p, o.q), std::swap(o.d1, o.d2);
-          if (close(cur.q, o.p)) { cur.q = o.q; cur.d2 = o.d2; }
-          else if (close(cur.p, o.q)) { cur.p = o.p; cur.d1 = o.d1; }
-          else continue;
-        }
+        const Piece& o = first[j];
+        // Overlapping, or meeting end to end: the union, along cur. A copy of a part of cur
+        // whose far end the builder rounded just off cur's line meets cur at an end too, and
+        // joined end to end it would fold cur back (a subdivision finding: a piece emitted
+        // twice along a steep edge's separator); its union with cur is cur.
+        if (!overlap(cur, o) && !close(cur.q, o.p) && !close(cur.q, o.q) && !close(cur.p, o.p) && !close(cur.p, o.q))
+          continue;
+        cover(cur, o);
         used[j] = 1;
         grown = true;
       }

@@ -13,6 +13,7 @@
 #include "bounds.hpp"
 #include "convex_cell.hpp"
 #include "linf/diagram/builder.hpp"
+#include "zero_width.hpp"
 
 // Internal linkage, as subdivision.hpp (see there).
 namespace linf::detail {
@@ -33,13 +34,19 @@ struct Model {
     S.reserve(global.size());
     f.reserve(global.size());
     g.reserve(global.size());
+    bool slanted = false;
     for (int i : global) {
       const Site t = shifted(all[i], origin);
       S.push_back(t);
       f.push_back(make_distfn(t, Norm::Linf));
       g.push_back(make_distfn(t, Norm::L1));
+      slanted = slanted || (!t.is_point() && t.a.x != t.b.x && t.a.y != t.b.y);
     }
+    if (slanted) partners = zero_width_partners(S);
   }
+  // zero_width.hpp: each segment's partner at its ends where the point there has no width
+  // between them (empty on a Manhattan layer, where there is none to find).
+  std::vector<std::array<std::int32_t, 2>> partners;
 
   // The allowance of a decision at p: tau, the same in every tile, and rounding at p's scale.
   double tol(const Vec2& p) const { return tau + 1e-13 * (std::fabs(p.x) + std::fabs(p.y)); }
@@ -262,6 +269,9 @@ struct Model {
     if (rectilinear(S[t]) && nearer_at_a_corner(S[t], r)) return false;
     const Side side = against(t, r.c, 4, r.fu, r.e);
     if (side == Side::Above) return true;
+    // f_t within the allowance of f_u and g_t above g_u: a steep edge's g is no guide there
+    // (affine.hpp, steep_edge): beside its end's cone it is nearer by less than the allowance.
+    if (steep_edge(S[t]) || steep_edge(S[r.u])) return false;
     if (against(g[t], r.c, 4, r.gu, r.e) != Side::Above) return false;
     return side == Side::Neither || covers(f[t], r);
   }

@@ -18,12 +18,11 @@
 #include "linf/geometry/distance.hpp"
 #include "diagram/sweep/bisector.hpp"
 #include "diagram/sweep/predicates.hpp"
+#include "diagram/zero_width.hpp"
 #include "util/huge_pages.hpp"
 
 namespace linf {
 namespace {
-
-using sweep::Ratio;
 
 // What the builder reports (the OUTPUT interface of voronoi_builder::construct): half-edges
 // in twin pairs, each with its cell's site and the vertex it starts from; a cell lies on the
@@ -125,26 +124,23 @@ double linf_distance(const Vec2& v, const Site& s) {
   return std::max(dx, dy);
 }
 
-// Points, axis-parallel and 45-degree segments.
-bool takes(const Site& s) {
-  return s.is_point() || s.a.x == s.b.x || s.a.y == s.b.y ||
-         std::llabs(std::int64_t(s.b.x) - s.a.x) == std::llabs(std::int64_t(s.b.y) - s.a.y);
+// A segment neither axis-parallel nor at 45 degrees: its balls' coefficients outgrow int64.
+bool steep(const Site& s) {
+  return sweep::is_diagonal(s) && std::llabs(std::int64_t(s.b.x) - s.a.x) != std::llabs(std::int64_t(s.b.y) - s.a.y);
 }
 
 }  // namespace
 
-bool sweep_handles(const Sites& sites) {
-  for (std::size_t i = 0; i < sites.sites.size(); ++i)
-    if (!takes(sites.sites[i])) return false;
-  return true;
-}
+bool sweep_handles(const Sites&) { return true; }
 
 namespace {
 
 // For each segment of S, the point sites strictly inside it (one of each place, as same_place
-// has them), ordered from its end0 to its end1; empty unless S has a 45-degree segment (a
+// has them), ordered from its end0 to its end1; empty unless S has a slanted segment (a
 // Manhattan layer's merged polygons meet only along shared stretches, so never so). Points by
-// their line through each direction, then along it: one binary search a segment.
+// their line through each octilinear direction, then along it: one binary search a segment.
+// A segment of another slope holds lattice points only every (dx, dy) / gcd: those, or the
+// points within its x-span, whichever are fewer, are looked up.
 std::vector<std::vector<std::int32_t>> touching_points(const SiteList& S, const std::vector<std::int32_t>& points,
                                                        const std::vector<std::int32_t>& same_place, bool diagonal) {
   if (!diagonal) return {};
@@ -163,10 +159,36 @@ std::vector<std::vector<std::int32_t>> touching_points(const SiteList& S, const 
     if (same_place[p] == p)
       for (int d = 0; d < 4; ++d) by[d].push_back({key(d, S[p].a), p});
   for (auto& v : by) std::sort(v.begin(), v.end());
+  const auto& by_x = by[1];  // (x, y)
   std::vector<std::vector<std::int32_t>> cuts(S.size());
   for (std::size_t i = 0; i < S.size(); ++i) {
     const Site& s = S[i];
     if (s.is_point()) continue;
+    if (steep(s)) {
+      const std::int64_t dx = std::int64_t(s.b.x) - s.a.x, dy = std::int64_t(s.b.y) - s.a.y;
+      const std::int64_t g = sweep::gcd64(dx, dy);
+      if (g < 2) continue;  // no lattice point strictly inside
+      const std::int64_t lo = std::min(s.a.x, s.b.x), hi = std::max(s.a.x, s.b.x);
+      const auto first = std::upper_bound(by_x.begin(), by_x.end(), std::make_pair(std::make_pair(lo, std::int64_t(INT64_MAX)), INT32_MAX));
+      const auto last = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(std::make_pair(hi, std::int64_t(INT64_MIN)), INT32_MIN));
+      if (first >= last) continue;
+      if (std::int64_t(last - first) <= g - 1) {
+        for (auto it = first; it != last; ++it) {
+          const Point& q = S[it->second].a;
+          if (__int128(q.x - std::int64_t(s.a.x)) * dy == __int128(q.y - std::int64_t(s.a.y)) * dx) cuts[i].push_back(it->second);
+        }
+        std::sort(cuts[i].begin(), cuts[i].end(), [&](std::int32_t u, std::int32_t w) {
+          return (std::int64_t(S[u].a.x) - S[w].a.x) * (dx > 0 ? 1 : -1) < 0;
+        });
+      } else {
+        for (std::int64_t k = 1; k < g; ++k) {
+          const std::int64_t qx = s.a.x + dx / g * k, qy = s.a.y + dy / g * k;
+          const auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(std::make_pair(qx, qy), INT32_MIN));
+          if (it != by_x.end() && it->first.first == qx && it->first.second == qy) cuts[i].push_back(it->second);
+        }
+      }
+      continue;
+    }
     const int d = s.a.y == s.b.y ? 0 : s.a.x == s.b.x ? 1 : (s.b.x > s.a.x) == (s.b.y > s.a.y) ? 2 : 3;
     const auto ka = key(d, s.a), kb = key(d, s.b);
     const std::int64_t lo = std::min(ka.second, kb.second), hi = std::max(ka.second, kb.second);
@@ -179,57 +201,38 @@ std::vector<std::vector<std::int32_t>> touching_points(const SiteList& S, const 
   return cuts;
 }
 
-// For each segment, the segment in line with it beyond its end0 and beyond its end1 with
-// nothing else at that end on one side of their line, or -1; empty unless S has a 45-degree
-// segment (`diagonal`: on a Manhattan layer two segments in line at a point are a corner where
-// two boxes touch, with a segment on each side).
-std::vector<std::array<std::int32_t, 2>> segments_in_line(const SiteList& S, const std::vector<std::int32_t>& same_place,
-                                                         bool diagonal) {
-  if (!diagonal) return {};
-  struct End {
-    std::int32_t place, seg;
-    int end, dir;  // dir: the segment's direction from the place, 0..7 counter-clockwise from +x
+// Boost's builder with the predicates of coefficient type I (eps.hpp) on the inserted
+// segments and points; the topology into topo.
+template <typename I>
+void construct(const SiteList& S, const std::vector<char>& at_an_end, const std::vector<std::vector<std::int32_t>>& cuts,
+               Topology& topo) {
+  boost::polygon::voronoi_builder<std::int32_t, sweep::CoordinateTraits<I>, sweep::Predicates<I>> vb;
+  auto insert = [&](std::int32_t site, std::int32_t from, std::int32_t to) {
+    topo.inserted.push_back(site), topo.start.push_back(from), topo.end.push_back(to);
   };
-  auto dir_of = [](std::int64_t dx, std::int64_t dy) {
-    const int sx = (dx > 0) - (dx < 0), sy = (dy > 0) - (dy < 0);
-    static const int table[3][3] = {{5, 4, 3}, {6, -1, 2}, {7, 0, 1}};  // [sx + 1][sy + 1]
-    return table[sx + 1][sy + 1];
-  };
-  std::vector<End> ends;
   for (std::size_t i = 0; i < S.size(); ++i) {
     const Site& s = S[i];
-    if (s.is_point()) continue;
-    ends.push_back({same_place[s.end0], std::int32_t(i), 0, dir_of(std::int64_t(s.b.x) - s.a.x, std::int64_t(s.b.y) - s.a.y)});
-    ends.push_back({same_place[s.end1], std::int32_t(i), 1, dir_of(std::int64_t(s.a.x) - s.b.x, std::int64_t(s.a.y) - s.b.y)});
+    if (!s.is_point()) {
+      std::int32_t from = s.end0;
+      if (!cuts.empty())
+        for (std::int32_t c : cuts[i]) {
+          vb.insert_segment(std::int32_t(S[from].a.x), std::int32_t(S[from].a.y), std::int32_t(S[c].a.x), std::int32_t(S[c].a.y));
+          insert(std::int32_t(i), from, c);
+          from = c;
+        }
+      vb.insert_segment(std::int32_t(S[from].a.x), std::int32_t(S[from].a.y), std::int32_t(s.b.x), std::int32_t(s.b.y));
+      insert(std::int32_t(i), from, s.end1);
+    } else if (!at_an_end[i]) {
+      vb.insert_point(std::int32_t(s.a.x), std::int32_t(s.a.y));
+      insert(std::int32_t(i), -1, -1);
+    }
   }
-  std::sort(ends.begin(), ends.end(), [](const End& x, const End& y) { return std::tie(x.place, x.dir, x.seg) < std::tie(y.place, y.dir, y.seg); });
-  std::vector<std::array<std::int32_t, 2>> out(S.size(), {-1, -1});
-  for (std::size_t i = 0; i < ends.size();) {
-    std::size_t j = i;
-    unsigned dirs = 0;
-    while (j < ends.size() && ends[j].place == ends[i].place) dirs |= 1u << ends[j].dir, ++j;
-    for (std::size_t a = i; a < j; ++a)
-      for (std::size_t b = a + 1; b < j; ++b) {
-        const End &x = ends[a], &y = ends[b];
-        if ((x.dir + 4) % 8 != y.dir) continue;
-        // Another segment strictly on one side of the line (directions between them one way
-        // round), or on both: the point's regions there have width, or the sides are closed.
-        bool left = false, right = false;
-        for (int k = 1; k < 4; ++k) left = left || (dirs >> ((x.dir + k) % 8) & 1u), right = right || (dirs >> ((x.dir + 4 + k) % 8) & 1u);
-        if (left && right) continue;
-        out[x.seg][x.end] = y.seg, out[y.seg][y.end] = x.seg;
-      }
-    i = j;
-  }
-  return out;
+  vb.construct(&topo);
 }
 
 // The diagram of S (ends numbered within S) inside clip and outside *hole (if given): pieces
 // with ids into S, joined, in join_order.
 std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole, SweepStats* stats) {
-  for (const Site& s : S)
-    if (!takes(s)) throw std::invalid_argument("sweep builder: only points, axis-parallel and 45-degree segments");
-  boost::polygon::voronoi_builder<std::int32_t, sweep::CoordinateTraits, sweep::Predicates> vb;
   Topology topo;
   // A point at a segment's end comes with the segment; points at one place are one site.
   std::vector<char> at_an_end(S.size(), 0);
@@ -252,45 +255,39 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     topo.same_place[points[k]] = k > 0 && S[points[k - 1]].a == S[points[k]].a ? topo.same_place[points[k - 1]] : points[k];
   // Boost's builder takes segments that meet at their ends only. Merged polygons meet where a
   // corner of one touches an edge of another; on a Manhattan layer the two then share a stretch
-  // of boundary and are one polygon, but a corner touching a 45-degree edge, or a 45-degree
-  // corner touching any edge, stays a point inside a segment. Such a segment is swept in parts
-  // cut at those points; the parts keep the segment's id (edges between them are left out).
-  bool diagonal = false;
-  for (const Site& s : S) diagonal = diagonal || sweep::is_diagonal(s);
-  const std::vector<std::vector<std::int32_t>> cuts = touching_points(S, points, topo.same_place, diagonal);
-  auto insert = [&](std::int32_t site, std::int32_t from, std::int32_t to) {
-    topo.inserted.push_back(site), topo.start.push_back(from), topo.end.push_back(to);
-  };
-  for (std::size_t i = 0; i < S.size(); ++i) {
-    const Site& s = S[i];
-    if (!s.is_point()) {
-      std::int32_t from = s.end0;
-      if (!cuts.empty())
-        for (std::int32_t c : cuts[i]) {
-          vb.insert_segment(std::int32_t(S[from].a.x), std::int32_t(S[from].a.y), std::int32_t(S[c].a.x), std::int32_t(S[c].a.y));
-          insert(std::int32_t(i), from, c);
-          from = c;
-        }
-      vb.insert_segment(std::int32_t(S[from].a.x), std::int32_t(S[from].a.y), std::int32_t(s.b.x), std::int32_t(s.b.y));
-      insert(std::int32_t(i), from, s.end1);
-    } else if (!at_an_end[i]) {
-      vb.insert_point(std::int32_t(s.a.x), std::int32_t(s.a.y));
-      insert(std::int32_t(i), -1, -1);
-    }
+  // of boundary and are one polygon, but a corner touching a slanted edge, or a slanted corner
+  // touching any edge, stays a point inside a segment. Such a segment is swept in parts cut at
+  // those points; the parts keep the segment's id (edges between them are left out).
+  bool diagonal = false, any_steep = false;
+  std::int64_t normal = 0;  // the largest entry of a slanted segment's normal
+  for (const Site& s : S) {
+    diagonal = diagonal || sweep::is_diagonal(s);
+    if (!steep(s)) continue;
+    any_steep = true;
+    const std::int64_t dx = std::int64_t(s.b.x) - s.a.x, dy = std::int64_t(s.b.y) - s.a.y, g = sweep::gcd64(dx, dy);
+    normal = std::max<std::int64_t>(normal, std::max(std::llabs(dx), std::llabs(dy)) / g);
   }
-  vb.construct(&topo);
+  const std::vector<std::vector<std::int32_t>> cuts = touching_points(S, points, topo.same_place, diagonal);
+  // A slanted segment of another slope than 45 degrees has rows as large as its normal: the
+  // balls' coefficients grow as its cube (ball.hpp). Within 2^24 (every edge of a drawn curve,
+  // any edge shorter than 16 million DBU) they stay within 2^112: 128 bits, products in 256;
+  // beyond, 256 bits. Layers of points, axis-parallel and 45-degree edges keep int64.
+  if (!any_steep) construct<std::int64_t>(S, at_an_end, cuts, topo);
+  else if (normal <= (std::int64_t(1) << 24)) construct<__int128>(S, at_an_end, cuts, topo);
+  else construct<sweep::Int256>(S, at_an_end, cuts, topo);
   // Two segments in line that end at one point, nothing else beside them there on a side (a
-  // polygon pinched at a 45-degree corner): the point's region on that side is the ray
+  // polygon pinched at a slanted corner): the point's region on that side is the ray
   // perpendicular to them, of no width. The rule gives the ray to the point; the subdivision
   // (and the files) have the two segments meet along it. Its edges with either segment are
   // those of the two segments (their bisector: that perpendicular).
-  const std::vector<std::array<std::int32_t, 2>> in_line = segments_in_line(S, topo.same_place, diagonal);
-  auto relabel = [&](std::int32_t seg, std::int32_t pt) {
-    if (in_line.empty() || S[seg].is_point() || !S[pt].is_point()) return pt;
+  const std::vector<std::array<std::int32_t, 2>> in_line = diagonal ? detail::zero_width_partners(S) : decltype(in_line){};
+  // The partner of seg at the place of point pt, if pt's region there has no width, or -1.
+  auto partner = [&](std::int32_t seg, std::int32_t pt) -> std::int32_t {
+    if (in_line.empty() || S[seg].is_point() || !S[pt].is_point()) return -1;
     const std::array<std::int32_t, 2>& o = in_line[seg];
-    if (o[0] >= 0 && topo.same_place[S[seg].end0] == pt) return o[0];
-    if (o[1] >= 0 && topo.same_place[S[seg].end1] == pt) return o[1];
-    return pt;
+    if (o[0] >= 0 && S[seg].a == S[pt].a) return o[0];
+    if (o[1] >= 0 && S[seg].b == S[pt].a) return o[1];
+    return -1;
   };
   auto cut_between = [&](std::int32_t u, std::int32_t w) {
     if (S[u].is_point() == S[w].is_point()) return false;
@@ -307,6 +304,8 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   struct Edge {  // what its pieces need, so that the sorted walk reads no half-edge
     std::uint64_t pair;  // (a, b) of its pieces, the sort key
     std::int32_t v0, v1; // the vertices of its half-edge from a and of its twin's, or -1
+    std::int32_t ga, gb; // the sites whose bisector it lies on, standing for a and b (a point
+                         // of no width is labelled as its partner segment)
   };
   std::vector<Edge> edges;
   edges.reserve(topo.halves.size() / 2);
@@ -318,10 +317,30 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     // through it along which both are nearest: no area, no piece.
     if (!cuts.empty() && cut_between(h.site, g.site)) continue;
     std::int32_t hs = h.site, gs = g.site;
-    if (!in_line.empty()) hs = relabel(gs, hs), gs = relabel(hs, gs);
+    std::int32_t h_geo = hs, g_geo = gs;
+    if (!in_line.empty() && !S[hs].is_point() && !S[gs].is_point()) {
+      // Two segments whose common end has no width between them: their edge is that end's
+      // separator (the point stands for gs there), not a branch of their lines' bisector.
+      const std::array<std::int32_t, 2>& o = in_line[hs];
+      if (o[0] == gs) g_geo = topo.same_place[S[hs].end0];
+      else if (o[1] == gs) g_geo = topo.same_place[S[hs].end1];
+    }
+    if (!in_line.empty()) {
+      // A point's region of no width between two segments: its edge with the lower one is the
+      // two segments' edge, its edge with the other the same line again (left out).
+      const std::int32_t ph = partner(gs, hs), pg = partner(hs, gs);
+      if (ph >= 0) {
+        if (ph < gs) continue;
+        hs = ph;
+      } else if (pg >= 0) {
+        if (pg < hs) continue;
+        gs = pg;
+      }
+    }
     const bool h_first = hs <= gs;
     edges.push_back({std::uint64_t(std::uint32_t(h_first ? hs : gs)) << 32 | std::uint32_t(h_first ? gs : hs),
-                     h_first ? h.vertex0 : g.vertex0, h_first ? g.vertex0 : h.vertex0});
+                     h_first ? h.vertex0 : g.vertex0, h_first ? g.vertex0 : h.vertex0, h_first ? h_geo : g_geo,
+                     h_first ? g_geo : h_geo});
   }
   std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.pair < y.pair; });
   std::vector<Piece> joined, run;
@@ -342,10 +361,10 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     if (!hole) return keep(p, q, u, w);
     outside(p, q, *hole, [&](const Vec2& a, const Vec2& b) { keep(a, b, u, w); }, line);
   };
-  // With a 45-degree segment: the chain's parts between the edge's vertices (or towards
+  // With a slanted segment: the chain's parts between the edge's vertices (or towards
   // infinity with the vertex's half-edge's site on the left), each vertex where it lies on it.
   auto chain_pieces = [&](const Edge& e, std::int32_t u, std::int32_t w) {
-    const Site &s = S[u], &t = S[w];
+    const Site &s = S[e.ga], &t = S[e.gb];
     const sweep::Chain c(s, t);
     if (c.straight) {
       if (e.v0 < 0 || e.v1 < 0)
@@ -383,7 +402,7 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   };
   auto pieces_of = [&](const Edge& e) {
     const std::int32_t u = std::int32_t(e.pair >> 32), w = std::int32_t(e.pair & 0xffffffffu);
-    const Site &s = S[u], &t = S[w];
+    const Site &s = S[e.ga], &t = S[e.gb];
     if (sweep::is_diagonal(s) || sweep::is_diagonal(t)) return chain_pieces(e, u, w);
     const sweep::Bisector b(s, t);
     if (b.straight) {

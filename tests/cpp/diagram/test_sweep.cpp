@@ -17,6 +17,7 @@
 #include "linf/diagram/sweep.hpp"
 #include "linf/geometry/sites.hpp"
 #include "layouts.hpp"
+#include "../fuzz/ends_check.hpp"
 #include "../fuzz/sweep_check.hpp"
 
 using namespace linf;
@@ -153,6 +154,114 @@ TEST(Sweep, OctilinearLayoutsAsTheSubdivision) {
   }
   EXPECT_EQ(failed, 0);
   EXPECT_GT(taken, 500);
+}
+
+TEST(Sweep, AnyAngleLayoutsAsTheSubdivision) {
+  // 1,000 merged layouts of boxes and convex quadrilaterals of any slope, overlapping, touching,
+  // nested: every one is the sweep's (slanted edges other than at 45 degrees: the 256-bit balls).
+  int failed = 0;
+  for (std::uint64_t seed = 1; seed <= 1000; ++seed) {
+    const Sites s = sites_of_polygons(merge_polygons(linf::testing::random_layout(seed, linf::testing::Style::AnyAngle, 1 + int(seed % 8))));
+    ASSERT_TRUE(sweep_handles(s));
+    const std::string d = difference_or_what_threw(s);
+    if (!d.empty() && ++failed <= 5) ADD_FAILURE() << "seed " << seed << ": " << d;
+  }
+  EXPECT_EQ(failed, 0);
+}
+
+TEST(Sweep, DegenerateAnyAngleAsTheSubdivision) {
+  // Slanted edges where they meet the grid worst: a corner where two edges of slopes of one
+  // sign meet (the corner's region has no width: the two edges' separators are one diagonal),
+  // a lattice point of another polygon inside a slanted edge, parallel slanted edges one DBU
+  // apart, edges in line at a pinch, nearly horizontal and nearly vertical edges beside their
+  // ends, drawn disks (curved shapes: many short edges of all slopes) and a ring; and all of
+  // it near 2^30.
+  auto box = [](Coord x1, Coord y1, Coord x2, Coord y2) { return Polygon{{{x1, y1}, {x2, y1}, {x2, y2}, {x1, y2}}, {}}; };
+  auto disk = [](Coord cx, Coord cy, double r, int n) {
+    Ring ring;
+    for (int k = 0; k < n; ++k) {
+      const double a = 2 * M_PI * k / n;
+      const Point p{cx + Coord(std::lround(r * std::cos(a))), cy + Coord(std::lround(r * std::sin(a)))};
+      if (ring.empty() || !(ring.back() == p)) ring.push_back(p);
+    }
+    return ring;
+  };
+  std::vector<std::vector<Polygon>> cases;
+  cases.push_back({Polygon{{{78, 96}, {57, 96}, {54, 90}, {70, 91}}, {}}});                          // corners of no width
+  cases.push_back({Polygon{{{0, 0}, {30, 10}, {0, 40}}, {}}, box(15, -10, 25, 5)});                 // (15, 5) inside an edge
+  cases.push_back({Polygon{{{0, 0}, {60, 20}, {60, 21}, {0, 1}}, {}}, Polygon{{{0, 3}, {60, 23}, {60, 30}, {0, 10}}, {}}});
+  cases.push_back({Polygon{{{0, 0}, {30, 10}, {60, 0}, {30, 30}}, {}}});                            // a dart: a reflex corner of two slanted edges
+  cases.push_back({Polygon{{{0, 0}, {30, 10}, {10, 20}}, {}}, Polygon{{{30, 10}, {60, 20}, {50, 0}}, {}}});  // edges in line at a pinch
+  cases.push_back({Polygon{{{0, 0}, {34304, 1}, {0, 30}}, {}}, Polygon{{{100, 40}, {101, 9000}, {80, 9000}}, {}}});
+  cases.push_back({Polygon{disk(0, 0, 1000, 256), {}}});
+  cases.push_back({Polygon{disk(0, 0, 50000, 2048), {}}});                                           // near-collinear runs
+  Ring inner = disk(0, 0, 600, 128);
+  std::reverse(inner.begin(), inner.end());
+  cases.push_back({Polygon{disk(0, 0, 1000, 256), {inner}}, Polygon{disk(0, 0, 300, 64), {}}});
+  std::vector<Polygon> disks;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) disks.push_back(Polygon{disk(700 * i, 700 * j + (i % 2) * 200, 320, 96), {}});
+  cases.push_back(disks);
+  const std::size_t n = cases.size();
+  for (std::size_t c = 0; c < n; ++c) {  // to the corner (2^30, -2^30), 100 DBU inside
+    std::vector<Polygon> far = cases[c];
+    Coord hi_x = -(Coord(1) << 30), lo_y = Coord(1) << 30;
+    for (const Polygon& p : far)
+      for (const Point& v : p.outer) hi_x = std::max(hi_x, v.x), lo_y = std::min(lo_y, v.y);
+    cases.push_back(moved(far, (Coord(1) << 30) - 100 - hi_x, -(Coord(1) << 30) + 100 - lo_y));
+  }
+  expect_as_the_subdivision(cases);
+}
+
+TEST(Sweep, SteepEdgesEndConesAsTheSubdivision) {
+  // A fuzzer finding: a segment of slope 15/65535 and its end (65535, 14) are separated by the
+  // diagonal x + y = 65549, which the subdivision emitted twice along one cell's side, one copy
+  // rounded 1e-9 off; joined end to end, the copy folded the run back and left a gap of 23,873
+  // DBU. Both builders: one piece along the whole diagonal, no piece ending early.
+  const std::vector<Segment> segs{{{65535, 14}, {0, -1}}, {{25600, -1}, {0, -1}}, {{7680, 65534}, {65535, 65534}}, {{0, 40959}, {0, -1}}};
+  DiagramOptions o;
+  o.build.threads = 1;
+  const Result sub = voronoi_of_sites({}, segs, o);
+  o.sweep = true;
+  const Result sw = voronoi_of_sites({}, segs, o);
+  ASSERT_TRUE(sw.diagram.swept);
+  EXPECT_EQ(linf::fuzz::same_pieces(sub.diagram.pieces, sw.diagram.pieces, 1e-7), "");  // the subdivision rounds by 1e-8 here
+  EXPECT_EQ(linf::fuzz::check_piece_ends(sub.diagram).failure, "");
+  int separators = 0;
+  for (const Piece& p : sub.diagram.pieces)
+    if (sub.diagram.sites.sites[p.a].is_point() && sub.diagram.sites.sites[p.a].a == Point{65535, 14} && !sub.diagram.sites.sites[p.b].is_point())
+      separators += std::fabs(p.p.x + p.p.y - 65549) < 1e-6 && std::fabs(p.q.x + p.q.y - 65549) < 1e-6;
+  EXPECT_EQ(separators, 1);
+}
+
+TEST(Sweep, ZeroWidthCornerOfTwoSteepEdgesAsTheSubdivision) {
+  // A fuzzer finding: at (526080, 30) edges of slopes 1/17536 and 1/18 meet with the polygon
+  // above both, so the corner's region has no width. The subdivision reported a piece between
+  // an edge and that corner which the sweep (rightly) reports as the two edges' separator.
+  // Both: the same pieces, and no piece between the corner point and either edge.
+  const Polygon quad{{{0, 0}, {526080, 30}, {802560, 15030}, {0, 15000}}, {}};
+  const Sites s = sites_of_polygons(merge_polygons({quad}));
+  ASSERT_TRUE(sweep_handles(s));
+  EXPECT_EQ(difference(s), "");
+  const std::vector<Piece> sub = build_pieces(s, clip_box(s));
+  for (const Piece& p : sub) {
+    const Site& a = s.sites[p.a];
+    const Site& b = s.sites[p.b];
+    const bool corner = (a.is_point() && a.a == Point{526080, 30}) || (b.is_point() && b.a == Point{526080, 30});
+    EXPECT_FALSE(corner && a.is_point() != b.is_point()) << p.a << "-" << p.b;
+  }
+}
+
+TEST(Sweep, AnyAngleBlocksAsTheSubdivisionAndTheChecker) {
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    Diagram d;
+    d.sites = sites_of_polygons(merge_polygons(linf::testing::block(seed, linf::testing::Style::AnyAngle, 6, 5)));
+    ASSERT_EQ(difference(d.sites), "") << "seed " << seed;
+    d.clip = clip_box(d.sites);
+    d.pieces = sweep_pieces(d.sites, d.clip);
+    const CheckReport r = check_diagram(d);
+    ASSERT_TRUE(r.ok()) << "seed " << seed << ": " << (r.messages.empty() ? "" : r.messages[0]);
+  }
 }
 
 TEST(Sweep, DegenerateManhattanAsTheSubdivision) {
@@ -333,6 +442,18 @@ TEST(Sweep, TilesGiveTheWholeLayersSweepBitForBit) {
     const Sites s = sites_of_polygons(merge_polygons(
         moved(linf::testing::random_layout(seed, linf::testing::Style::Octilinear, 1 + int(seed % 10)), off, off)));
     if (sweep_handles(s)) run(s, "octilinear layout near -2^30 " + std::to_string(seed));
+  }
+  // Any slope: pieces of every slope cut at the tiles' sides from their exact line equations.
+  for (std::uint64_t seed = 1; seed <= 40; ++seed)
+    run(sites_of_polygons(merge_polygons(linf::testing::random_layout(seed, linf::testing::Style::AnyAngle, 1 + int(seed % 10)))),
+        "any-angle layout " + std::to_string(seed));
+  for (std::uint64_t seed = 1; seed <= 4; ++seed)
+    run(sites_of_polygons(merge_polygons(linf::testing::block(seed, linf::testing::Style::AnyAngle, 8, 6))),
+        "any-angle block " + std::to_string(seed));
+  for (std::uint64_t seed = 1; seed <= 30; ++seed) {
+    const Coord off = (Coord(1) << 30) - 1000;
+    run(sites_of_polygons(merge_polygons(moved(linf::testing::random_layout(seed, linf::testing::Style::AnyAngle, 1 + int(seed % 10)), -off, off))),
+        "any-angle layout near 2^30 " + std::to_string(seed));
   }
   for (std::uint64_t seed = 1; seed <= 4; ++seed) run(points(random_points(seed, 3000, 1 << (8 + 4 * int(seed)))), "points " + std::to_string(seed));
   std::vector<Polygon> row;

@@ -43,6 +43,10 @@ inline double dist_site(double x, double y, const Site& s) {
 
 // L1 distance, the ownership rule's first tie-break; breakpoints are the axis crossings.
 inline double dist_site_l1(double x, double y, const Site& s) {
+  if (!s.is_point() && s.a.x != s.b.x && s.a.y != s.b.y &&
+      std::llabs(std::int64_t(s.b.x) - s.a.x) != std::llabs(std::int64_t(s.b.y) - s.a.y))
+    return std::max(std::fabs(x - double(s.a.x)) + std::fabs(y - double(s.a.y)),
+                    std::fabs(x - double(s.b.x)) + std::fabs(y - double(s.b.y)));
   const double ax = double(s.a.x), ay = double(s.a.y);
   const double dx = double(s.b.x) - ax, dy = double(s.b.y) - ay;
   const double ux = x - ax, uy = y - ay;

@@ -13,7 +13,7 @@
 //   diagonals through their lines' crossing; the sweep gives both its ends (the segments'
 //   strips cross in a bounded box), and the piece is the straight segment between them.
 // Vertical cases are the horizontal ones with the axes swapped.
-// With a 45-degree segment the bisector is a polyline (Chain, below).
+// With a slanted segment the bisector is a polyline (Chain, below).
 #pragma once
 #include <algorithm>
 #include <array>
@@ -23,6 +23,7 @@
 #include <limits>
 #include <utility>
 
+#include "diagram/sweep/eps.hpp"
 #include "linf/geometry/site.hpp"
 
 namespace linf::sweep {
@@ -110,36 +111,54 @@ struct Bisector {
   }
 };
 
-// The line a x + b y = c, its coefficients small integers and c an integer of at most 2^34
-// (exact in doubles): where a piece of it is cut at a tile's side, the other coordinate
-// follows from the side alone.
+// The line a x + b y = c, its coefficients exact integers (a slanted site's normal makes them
+// up to 2^94): where a piece of it is cut at a tile's side, the other coordinate follows from
+// the side alone, so the same cut from any tile has the same bits.
 struct Line {
-  double a = 0, b = 0, c = 0;
-  double y_at(double x) const { return (c - a * x) / b; }
-  double x_at(double y) const { return (c - b * y) / a; }
+  __int128 a = 0, b = 0, c = 0;
+  double y_at(double x) const { return solve(c, a, b, x); }
+  double x_at(double y) const { return solve(c, b, a, y); }
+
+ private:
+  // (c - a t) / b: exact up to the last division where 2t is an integer (a tile's side is),
+  // else in long double.
+  static double solve(__int128 c, __int128 a, __int128 b, double t) {
+    const double t2 = 2 * t;
+    if (t2 == std::floor(t2) && std::fabs(t2) < 0x1p62) {
+      const __int128 num = 2 * c - a * __int128(t2);
+      return double(num) / double(2 * b);
+    }
+    return double((static_cast<long double>(c) - static_cast<long double>(a) * t) / static_cast<long double>(b));
+  }
 };
 
-// Whether s is a segment neither horizontal nor vertical (the sweep takes only 45-degree ones).
+// Whether s is a segment neither horizontal nor vertical (45 degrees or any other slope).
 inline bool is_diagonal(const Site& s) { return !s.is_point() && s.a.x != s.b.x && s.a.y != s.b.y; }
 
-// The bisector of two sites of which one is a 45-degree segment, as a polyline: v[0..n) with a
+// The bisector of two sites of which one is a slanted segment, as a polyline: v[0..n) with a
 // ray into v[0] along -in (from infinity) and one out of v[n - 1] along `out`, or no rays and
 // the piece between the edge's two vertices (`straight`). No L-inf tie covers an area here: a
-// 45-degree line's L-inf distance has gradient (+-1/2, +-1/2), a point's and an axis-parallel
-// line's (+-1, 0) or (0, +-1), so the sites' distance functions agree on lines only.
-// * A point P and the line m . q = c (m = (+-1, +-1)), P on the side m . q < c at D = c - m . P:
-//   with u = m_x (x - P.x), v = m_y (y - P.y) the bisector is (-D/2, D/2), (D/4, D/4),
-//   (D/2, -D/2) with both rays along (-1, -1): a U around P (along that direction both
-//   distances grow alike). P on the line (a segment's own end): the line P + t m (the L-inf
-//   nearest point of a 45-degree line is unique, reached along m).
-// * Two parallel 45-degree lines: the middle line. Two lines that cross (a 45-degree one and
-//   any other): a line through the crossing, bounded by the segments' strips; the sweep gives
-//   both its ends.
+// slanted line m . q = c has L-inf distance |m . q - c| / (|m_x| + |m_y|), gradient m / |m|_1
+// with both entries nonzero, a point's and an axis-parallel line's (+-1, 0) or (0, +-1), so
+// the sites' distance functions agree on lines only.
+// * A point P and the line m . q = c, P on the side m . q < c at D = c - m . P (m oriented so):
+//   with A = |m_x|, B = |m_y|, u = s_x (x - P.x), v = s_y (y - P.y) (s = sgn m) the line's
+//   distance is (D - A u - B v) / (A + B), P's max(|u|, |v|); equal on
+//   (-D/2B, D/2B), (D/2(A+B), D/2(A+B)), (D/2A, -D/2A), the inner parts A u + (A + 2B) v = D
+//   and (2A + B) u + B v = D, both rays along (-1, -1): a U around P (along that direction both
+//   distances grow alike). At 45 degrees: (-D/2, D/2), (D/4, D/4), (D/2, -D/2). P on the line
+//   (a segment's own end): the line P + t sgn(m) (the L-inf nearest point of a slanted line is
+//   unique, reached along sgn(m): N_eps's diagonal vertex).
+// * Two parallel slanted lines: the middle line. Two lines that cross (a slanted one and any
+//   other): a line through the crossing, bounded by the segments' strips; the sweep gives both
+//   its ends.
 struct Chain {
   Vec2 v[3];
-  Line parts[2];  // the lines of v[0]-v[1] and v[1]-v[2], of slope 1/3 or 3 (the rays are diagonal)
+  Line parts[2];  // the lines of v[0]-v[1] and v[1]-v[2] (the rays are diagonal: exact anyway)
+  Line whole;     // the middle line of two parallel slanted lines (n = 1)
+  bool has_whole = false;
   int n = 0;
-  Vec2 in{0, 0}, out{0, 0};  // unit steps of the rays
+  Vec2 in{0, 0}, out{0, 0};  // steps of the rays, the larger entry +-1
   bool straight = false;
   // Whether the chain, walked from its in-ray to its out-ray, has `point` (the point site, or
   // one of two parallel segments) on its left; the other site is on the other side. A point on
@@ -159,80 +178,114 @@ struct Chain {
     // Parallel: m . q = c, c half way between the lines, walked along (m_y, -m_x), which has m
     // on its left.
     const auto m = line_m(s);
-    const double c = 0.5 * (double(m[0] * s.a.x + m[1] * s.a.y) + double(m[0] * t.a.x + m[1] * t.a.y));
-    if (m[0] * s.a.x + m[1] * s.a.y == m[0] * t.a.x + m[1] * t.a.y) {  // in line: as Bisector's
+    const __int128 cs = form(m, s.a), ct = form(m, t.a);
+    if (cs == ct) {  // in line: as Bisector's, along sgn(m) through the shared end
       const Point& end = (s.a == t.a || s.a == t.b) ? s.a : s.b;
       const Point& mid_s = s.a == end ? s.b : s.a;  // s lies along its line from the shared end
+      const std::array<std::int64_t, 2> d = sgn(m);
       n = 1;
       v[0] = {double(end.x), double(end.y)};
-      in = out = {double(m[0]), double(m[1])};
+      in = out = {double(d[0]), double(d[1])};
       point = &s;
-      left_is_point = double(mid_s.x - end.x) * double(-m[1]) + double(mid_s.y - end.y) * double(m[0]) > 0;
+      left_is_point = double(mid_s.x - end.x) * double(-d[1]) + double(mid_s.y - end.y) * double(d[0]) > 0;
       return;
     }
     n = 1;
-    v[0] = {0.5 * c * double(m[0]), 0.5 * c * double(m[1])};
-    in = out = {double(m[1]), double(-m[0])};
+    v[0] = {0.5 * (double(s.a.x) + double(t.a.x)), 0.5 * (double(s.a.y) + double(t.a.y))};  // on the middle line
+    const double big = double(std::max(std::llabs(m[0]), std::llabs(m[1])));
+    in = out = {double(m[1]) / big, double(-m[0]) / big};
+    whole = {2 * __int128(m[0]), 2 * __int128(m[1]), cs + ct}, has_whole = true;
     point = &s;  // stands for s here: s on the left where its line lies beyond the middle
-    left_is_point = double(m[0] * s.a.x + m[1] * s.a.y) > c;
+    left_is_point = cs > ct;
   }
 
-  // m (as +-1, +-1) of a 45-degree segment's line: its normal with m_x = 1.
+  // m of a slanted segment's line: its normal (-dy, dx) / gcd with m_x > 0.
   static std::array<std::int64_t, 2> line_m(const Site& d) {
-    const std::int64_t dx = d.b.x - d.a.x, dy = d.b.y - d.a.y;
-    return {1, (dx > 0) == (dy > 0) ? -1 : 1};
+    std::int64_t dx = std::int64_t(d.b.x) - d.a.x, dy = std::int64_t(d.b.y) - d.a.y;
+    std::int64_t g = std::llabs(dx), h = std::llabs(dy);
+    while (h) g %= h, std::swap(g, h);
+    dx /= g, dy /= g;
+    return dy < 0 ? std::array<std::int64_t, 2>{-dy, dx} : std::array<std::int64_t, 2>{dy, -dx};
+  }
+  static std::array<std::int64_t, 2> sgn(const std::array<std::int64_t, 2>& m) {
+    return {m[0] > 0 ? 1 : -1, m[1] > 0 ? 1 : -1};
+  }
+  static __int128 form(const std::array<std::int64_t, 2>& m, const Point& p) {
+    return __int128(m[0]) * p.x + __int128(m[1]) * p.y;
   }
 
   void point_line(const Site& p, const Site& seg) {
     auto m = line_m(seg);
-    const std::int64_t c = m[0] * seg.a.x + m[1] * seg.a.y;
-    std::int64_t D = c - (m[0] * p.a.x + m[1] * p.a.y);
+    __int128 D = form(m, seg.a) - form(m, p.a);
     point = &p;
-    if (D == 0) {  // P + t m, walked along m: the segment's other end lies on one side
+    if (D == 0) {  // P + t sgn(m), walked along it: the segment's other end lies on one side
+      const std::array<std::int64_t, 2> d = sgn(m);
       n = 1;
       v[0] = {double(p.a.x), double(p.a.y)};
-      in = out = {double(m[0]), double(m[1])};
+      in = out = {double(d[0]), double(d[1])};
       const Point other = seg.a == p.a ? seg.b : seg.a;
-      // The segment on the left of m where (other - P) . (-m_y, m_x) > 0; P counts as the
+      // The segment on the left of d where (other - P) . (-d_y, d_x) > 0; P counts as the
       // other side.
-      left_is_point = double(other.x - p.a.x) * double(-m[1]) + double(other.y - p.a.y) * double(m[0]) < 0;
+      left_is_point = double(other.x - p.a.x) * double(-d[1]) + double(other.y - p.a.y) * double(d[0]) < 0;
       return;
     }
     if (D < 0) m = {-m[0], -m[1]}, D = -D;
-    const double d = double(D), px = double(p.a.x), py = double(p.a.y), mx = double(m[0]), my = double(m[1]);
-    auto at = [&](double u, double w) { return Vec2{px + mx * u, py + my * w}; };
+    const std::int64_t A = std::llabs(m[0]), B = std::llabs(m[1]);
+    const std::int64_t sx = m[0] > 0 ? 1 : -1, sy = m[1] > 0 ? 1 : -1;
+    const double mx = double(sx), my = double(sy);
+    // P + (s_x u, s_y w) for u, w = k D / q, rounded once (as the sweep's vertices are: a vertex
+    // at a bend has the bend's bits).
+    auto at = [&](int ku, int kw, std::int64_t q) {
+      return Vec2{sweep::rounded_quotient(__int128(q) * p.a.x + sx * ku * D, __int128(q)),
+                  sweep::rounded_quotient(__int128(q) * p.a.y + sy * kw * D, __int128(q))};
+    };
     n = 3;
-    v[0] = at(-0.5 * d, 0.5 * d), v[1] = at(0.25 * d, 0.25 * d), v[2] = at(0.5 * d, -0.5 * d);
-    // u + 3 v = D and 3 u + v = D.
-    parts[0] = {mx, 3 * my, d + mx * px + 3 * my * py};
-    parts[1] = {3 * mx, my, d + 3 * mx * px + my * py};
+    v[0] = at(-1, 1, 2 * B), v[1] = at(1, 1, 2 * (A + B)), v[2] = at(1, -1, 2 * A);
+    // A u + (A + 2B) v = D and (2A + B) u + B v = D.
+    const __int128 a0 = __int128(A) * sx, b0 = __int128(A + 2 * B) * sy, a1 = __int128(2 * A + B) * sx,
+                   b1 = __int128(B) * sy;
+    parts[0] = {a0, b0, D + a0 * p.a.x + b0 * p.a.y};
+    parts[1] = {a1, b1, D + a1 * p.a.x + b1 * p.a.y};
     in = {mx, my};        // into v[0] along +(1, 1) in (u, v)
     out = {-mx, -my};     // out of v[2] along (-1, -1)
     // In (u, v) the walk goes clockwise round P (P on its right); a reflection with
-    // m_x m_y = -1 turns it.
-    left_is_point = m[0] * m[1] < 0;
+    // s_x s_y = -1 turns it.
+    left_is_point = sx * sy < 0;
   }
 
-  // The line of part k (0 .. n - 2, the inner parts), or none (a diagonal ray: exact anyway).
-  const Line* line_of(int k) const { return k >= 0 && k + 1 < n ? &parts[k] : nullptr; }
+  // The line of part k (0 .. n - 2, the inner parts; a single line's own), or none (a diagonal
+  // ray: exact anyway).
+  const Line* line_of(int k) const {
+    if (n == 1) return has_whole ? &whole : nullptr;
+    return k >= 0 && k + 1 < n ? &parts[k] : nullptr;
+  }
 
-  // The bisector of two segments' lines that cross, one of them at 45 degrees: with each
-  // line's L-inf distance |a x + b y - c| / w (w = 1 axis-parallel, 2 diagonal), the line
+  // The bisector of two segments' lines that cross, one of them slanted: with each line's
+  // L-inf distance |a x + b y - c| / w (w = |a| + |b|), the line
   // w_t (a_s x + b_s y - c_s) = +-w_s (a_t x + b_t y - c_t) through the edge's two vertices.
   static Line between_lines(const Site& s, const Site& t, const Vec2& p, const Vec2& q) {
-    auto form = [](const Site& g, double& a, double& b, double& w) {
-      if (g.a.y == g.b.y) a = 0, b = 1, w = 1;
-      else if (g.a.x == g.b.x) a = 1, b = 0, w = 1;
-      else a = 1, b = double(line_m(g)[1]), w = 2;
-      return a * double(g.a.x) + b * double(g.a.y);
+    auto form_of = [](const Site& g, __int128& a, __int128& b, __int128& w) {
+      if (g.a.y == g.b.y) a = 0, b = 1;
+      else if (g.a.x == g.b.x) a = 1, b = 0;
+      else {
+        const auto m = line_m(g);
+        a = m[0], b = m[1];
+      }
+      w = (a < 0 ? -a : a) + (b < 0 ? -b : b);
+      return a * g.a.x + b * g.a.y;
     };
-    double as, bs, ws, at, bt, wt;
-    const double cs = form(s, as, bs, ws), ct = form(t, at, bt, wt);
+    __int128 as, bs, ws, at, bt, wt;
+    const __int128 cs = form_of(s, as, bs, ws), ct = form_of(t, at, bt, wt);
     Line best;
-    double off = INFINITY;
-    for (double sg : {1.0, -1.0}) {
+    long double off = INFINITY;
+    for (int sg : {1, -1}) {
       const Line l{wt * as - sg * ws * at, wt * bs - sg * ws * bt, wt * cs - sg * ws * ct};
-      const double e = std::fabs(l.a * p.x + l.b * p.y - l.c) + std::fabs(l.a * q.x + l.b * q.y - l.c);
+      auto res = [&](const Vec2& v) {
+        return std::fabs(static_cast<long double>(l.a) * v.x + static_cast<long double>(l.b) * v.y -
+                         static_cast<long double>(l.c)) /
+               (std::fabs(static_cast<long double>(l.a)) + std::fabs(static_cast<long double>(l.b)));
+      };
+      const long double e = res(p) + res(q);
       if (e < off) off = e, best = l;
     }
     return best;

@@ -11,7 +11,7 @@
 // ball of N_eps: its rightmost point is the vertex (1/(1+eps), 0), so an event has the y of
 // its centre.
 //
-// Points, axis-parallel and 45-degree segments (sweep.hpp); the balls of the circle events are ball.hpp's.
+// Points and segments of any slope (sweep.hpp); the balls of the circle events are ball.hpp's.
 #pragma once
 #include <boost/polygon/detail/voronoi_structures.hpp>
 #include <algorithm>
@@ -24,9 +24,12 @@
 
 namespace linf::sweep {
 
+// I: the coefficients' type (eps.hpp): int64 where every segment is axis-parallel or at 45
+// degrees, Int256 where one is slanted otherwise.
+template <typename I>
 struct CoordinateTraits {
   typedef std::int32_t int_type;
-  typedef Ratio fpt_type;
+  typedef RatioT<I> fpt_type;
 };
 
 
@@ -35,18 +38,19 @@ struct CoordinateTraits {
 // its sides' forms and each form's equation falls in t, so the root is the largest of their
 // roots; the sides facing left (alpha = -(1 + eps)) have none unless p.x = s.x.
 // Returns false where the arc does not reach p's height (p.x = s.x, p.y != s.y).
-inline bool arc_distance(std::int64_t sx, std::int64_t sy, std::int64_t px, std::int64_t py, Ratio& t) {
+template <typename I>
+bool arc_distance(std::int64_t sx, std::int64_t sy, std::int64_t px, std::int64_t py, RatioT<I>& t) {
   const std::int64_t dx = px - sx, dy = py - sy;
   if (dx == 0) {
-    t = Ratio(0);
+    t = RatioT<I>(I(0));
     return dy == 0;
   }
-  const Eps one_eps = Eps::of(1, 1);
+  const EpsT<I> one_eps = EpsT<I>::of(I(1), I(1));
   bool any = false;
   for (int k = 0; k < 8; ++k) {
-    const Side& f = sides()[k];
+    const SideT<I>& f = sides<I>()[k];
     if (k == 2 || k == 3) continue;
-    const Ratio r(dx * f.alpha + dy * f.beta, one_eps + f.alpha);
+    const RatioT<I> r(I(dx) * f.alpha + I(dy) * f.beta, one_eps + f.alpha);
     if (!any || compare(r, t) > 0) t = r, any = true;
   }
   return true;
@@ -54,20 +58,24 @@ inline bool arc_distance(std::int64_t sx, std::int64_t sy, std::int64_t px, std:
 
 // Whether the arc of point site b lies nearer p (on p's horizontal) than that of a: the
 // sign of t_a - t_b. At eps = 0, t = max(dx / 2, |dy|); only its ties need the eps terms.
-inline int arc_nearer(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by, std::int64_t px,
+template <typename I>
+int arc_nearer(std::int64_t ax, std::int64_t ay, std::int64_t bx, std::int64_t by, std::int64_t px,
                       std::int64_t py) {
   const bool reach_a = px != ax || py == ay, reach_b = px != bx || py == by;
   if (!reach_a || !reach_b) return reach_a == reach_b ? 0 : (reach_b ? 1 : -1);
   const std::int64_t ta = std::max<std::int64_t>(px - ax, 2 * std::llabs(py - ay));
   const std::int64_t tb = std::max<std::int64_t>(px - bx, 2 * std::llabs(py - by));
   if (ta != tb) return ta > tb ? 1 : -1;
-  Ratio ra, rb;
-  arc_distance(ax, ay, px, py, ra);
-  arc_distance(bx, by, px, py, rb);
+  RatioT<I> ra, rb;
+  arc_distance<I>(ax, ay, px, py, ra);
+  arc_distance<I>(bx, by, px, py, rb);
   return compare(ra, rb);
 }
 
+template <typename I>
 struct Predicates {
+  using Ratio = RatioT<I>;
+  using Eps = EpsT<I>;
   template <typename Point>
   static bool is_vertical(const Point& p1, const Point& p2) {
     return p1.x() == p2.x();
@@ -97,8 +105,8 @@ struct Predicates {
       if (l.y0() != r.y0()) return l.y0() < r.y0();
       return orientation(l.x1(), l.y1(), l.x0(), l.y0(), r.x1(), r.y1()) > 0;
     }
-    bool operator()(const Site& l, const Circle& r) const { return compare(Ratio(l.x0()), r.lower_x()) < 0; }
-    bool operator()(const Circle& l, const Site& r) const { return compare(l.lower_x(), Ratio(r.x0())) < 0; }
+    bool operator()(const Site& l, const Circle& r) const { return compare(Ratio(I(l.x0())), r.lower_x()) < 0; }
+    bool operator()(const Circle& l, const Site& r) const { return compare(l.lower_x(), Ratio(I(r.x0()))) < 0; }
     bool operator()(const Circle& l, const Circle& r) const {
       const int c = compare(l.lower_x(), r.lower_x());
       return c != 0 ? c < 0 : compare(l.y(), r.y()) < 0;
@@ -134,7 +142,7 @@ struct Predicates {
       } else {
         return std::int64_t(a.y()) + b.y() < 2 * std::int64_t(p.y());
       }
-      return arc_nearer(a.x(), a.y(), b.x(), b.y(), p.x(), p.y()) > 0;
+      return arc_nearer<I>(a.x(), a.y(), b.x(), b.y(), p.x(), p.y()) > 0;
     }
 
     // t of a segment's arc (its line's) at p's height, the sweep at p.x; negative where p is on
@@ -142,25 +150,28 @@ struct Predicates {
     // met there.
     template <typename Point>
     static Ratio segment_arc(const Site& s, const Point& p) {
-      if (s.x0() == s.x1()) return Ratio(Eps(std::int64_t(p.x()) - s.x0()), Eps(2));
+      if (s.x0() == s.x1()) return Ratio(Eps(I(std::int64_t(p.x()) - s.x0())), Eps(I(2)));
       if (s.y0() != s.y1()) return diagonal_arc(s, p);
       const std::int64_t dy = std::int64_t(p.y()) - s.y0();
-      return Ratio(s.x1() > s.x0() ? -dy : dy);  // the arc is on the right of point0 -> point1
+      return Ratio(I(s.x1() > s.x0() ? -dy : dy));  // the arc is on the right of point0 -> point1
     }
 
-    // A 45-degree line lying in direction n from its arc (segment_side): at q = p - (t, 0) the
-    // N_eps distance to it is (1 + 2 eps) w(q) / 2, w = n . (point0 - q), so
-    // t = (1 + 2 eps) w(p) / (2 + 2 eps - n_x (1 + 2 eps)): w(p) times 1 + 2 eps or over 3 + 4 eps.
+    // A slanted line lying in direction n from its arc (segment_normal): at q = p - (t, 0) the
+    // N_eps distance to it is (1 + 2 eps) w(q) / |n|_1, w = n . (point0 - q) (ball.hpp: the
+    // diagonal vertex touches), so t = (1 + 2 eps) w(p) / (|n|_1 (1 + eps) - n_x (1 + 2 eps)),
+    // whose denominator is positive (|n_x| < |n|_1). At 45 degrees: w(p) (1 + 2 eps), or over
+    // 3 + 4 eps.
+    static Eps arc_den(const Normal& n) { return Eps::of(I(n.l1() - n.x), I(n.l1() - 2 * n.x)); }
     template <typename Point>
     static Ratio diagonal_arc(const Site& s, const Point& p) {
-      const std::int64_t* n = kDiagonalN[segment_side(s) - kDiagonal];
-      const std::int64_t w = n[0] * (std::int64_t(s.x0()) - p.x()) + n[1] * (std::int64_t(s.y0()) - p.y());
-      return n[0] > 0 ? Ratio(Eps::of(w, 2 * w), Eps(1)) : Ratio(Eps::of(w, 2 * w), Eps::of(3, 4));
+      const Normal n = segment_normal(s);
+      const I w = I(n.x) * I(std::int64_t(s.x0()) - p.x()) + I(n.y) * I(std::int64_t(s.y0()) - p.y());
+      return Ratio(Eps::of(w, I(2) * w), arc_den(n));
     }
     // d t / d y of that arc: -n_y (1 + 2 eps) over the same denominator.
     static Ratio diagonal_arc_slope(const Site& s) {
-      const std::int64_t* n = kDiagonalN[segment_side(s) - kDiagonal];
-      return n[0] > 0 ? Ratio(Eps::of(-n[1], -2 * n[1]), Eps(1)) : Ratio(Eps::of(-n[1], -2 * n[1]), Eps::of(3, 4));
+      const Normal n = segment_normal(s);
+      return Ratio(Eps::of(I(-n.y), I(-2 * n.y)), arc_den(n));
     }
 
     // A point P and a 45-degree segment S, p on S's arc side. Boost's shortcuts for this case
@@ -175,13 +186,13 @@ struct Predicates {
     static bool diagonal_ps(const Site& point, const Site& seg, const Point& p, bool reverse) {
       const std::int64_t dx = std::int64_t(p.x()) - point.x0(), dy = std::int64_t(p.y()) - point.y0();
       if (dx == 0) return dy > 0;  // P's arc is the ray at its own height: y_lo = y_hi = P.y
-      const Eps one_eps = Eps::of(1, 1);
+      const Eps one_eps = Eps::of(I(1), I(1));
       Ratio tp, slope;
       bool any = false;
       for (int k = 0; k < 8; ++k) {
         if (k == 2 || k == 3) continue;  // facing left: no root
-        const Side& f = sides()[k];
-        const Ratio r(dx * f.alpha + dy * f.beta, one_eps + f.alpha), m(f.beta, one_eps + f.alpha);
+        const SideT<I>& f = sides<I>()[k];
+        const Ratio r(I(dx) * f.alpha + I(dy) * f.beta, one_eps + f.alpha), m(f.beta, one_eps + f.alpha);
         const int c = any ? compare(r, tp) : 1;
         if (c > 0) tp = r, slope = m, any = true;
         else if (c == 0 && compare(m, slope) > 0) slope = m;
@@ -230,7 +241,7 @@ struct Predicates {
       const int fast = fast_ps(point, seg, p, reverse);
       if (fast != kUndefined) return fast == kLess;
       Ratio tp;
-      const bool reach = arc_distance(point.x0(), point.y0(), p.x(), p.y(), tp);
+      const bool reach = arc_distance<I>(point.x0(), point.y0(), p.x(), p.y(), tp);
       const Ratio ts = segment_arc(seg, p);
       // Boost: reverse ^ (dist_point < dist_segment), its distances being -t.
       const bool point_farther = !reach || compare(tp, ts) > 0;
@@ -323,24 +334,26 @@ struct Predicates {
       }
       std::int64_t x[3], y[3];
       int fixed[3];
+      Normal nrm[3];
       Span spans[3];
       for (int a = 0; a < 3; ++a) {
         const Site& t = *s[a];
         x[a] = t.x0(), y[a] = t.y0();
         fixed[a] = t.is_segment() ? segment_side(t) : -1;
+        if (t.is_segment()) nrm[a] = segment_normal(t);
         if (t.is_segment())  // x, but y for a vertical segment
           spans[a] = t.x0() != t.x1() ? Span{std::min<std::int64_t>(t.x0(), t.x1()), std::max<std::int64_t>(t.x0(), t.x1())}
                                       : Span{std::min<std::int64_t>(t.y0(), t.y1()), std::max<std::int64_t>(t.y0(), t.y1())};
       }
-      Ball b;
-      if (segments == 0 ? !ball_through(x, y, b) : !ball_touching(x, y, fixed, spans, b)) return false;
-      const Eps one_eps = Eps::of(1, 1);
+      BallT<I> b;
+      if (segments == 0 ? !ball_through<I>(x, y, b) : !ball_touching<I>(x, y, fixed, nrm, spans, b)) return false;
+      const Eps one_eps = Eps::of(I(1), I(1));
       c = Circle(Ratio(b.cx, b.den), Ratio(b.cy, b.den), Ratio(b.cx * one_eps + b.r, b.den * one_eps));
       // Boost's last test: a vertical segment's arc ends at its endpoints' heights.
       for (const Site* t : s) {
         if (!t->is_segment() || t->x0() != t->x1()) continue;
         const std::int64_t lo = std::min(t->y0(), t->y1()), hi = std::max(t->y0(), t->y1());
-        if (compare(c.y(), Ratio(lo)) < 0 || compare(c.y(), Ratio(hi)) > 0) return false;
+        if (compare(c.y(), Ratio(I(lo))) < 0 || compare(c.y(), Ratio(I(hi))) > 0) return false;
       }
       return true;
     }
