@@ -1,5 +1,8 @@
 // The sweep-line builder's diagram against the subdivision's: the same pieces, each with the
-// same owners and ends (either way round) within `tol` of the other's. Shared by the tests
+// same owners and ends (either way round) within `tol` of the other's (relative to the point's
+// size) plus `floor` (DBU: the subdivision's own allowance, which grows with the layer's box,
+// builder.cpp's allowance(); a vertex where nearly parallel distance functions cross is placed
+// only that well, 3e-8 off at (8, 0) on a layer 6e4 wide). Shared by the tests
 // (tests/cpp/diagram/test_sweep.cpp) and the fuzzer.
 // A piece of zero length (within `tol`) is a vertex, not a part of a bisector: the subdivision may leave one
 // where a cell's boundary turns on a vertex (two sites tie along no length), the sweep does not,
@@ -19,12 +22,13 @@
 namespace linf::fuzz {
 
 // "" if every piece of each side has its match on the other; else the first one that has not.
-inline std::string same_pieces(const std::vector<Piece>& subdivision, const std::vector<Piece>& sweep, double tol) {
+inline std::string same_pieces(const std::vector<Piece>& subdivision, const std::vector<Piece>& sweep, double tol,
+                               double floor = 0) {
   // Relative to the point's size, not to each coordinate's: a builder rounds both coordinates
   // of a point at its scale (the subdivision gave y = 7.5e-9 for 0 at x = 3.8e8).
-  auto near = [tol](const Vec2& u, const Vec2& v) {
-    const double scale = 1 + std::max(std::fabs(u.x), std::fabs(u.y));
-    return std::fabs(u.x - v.x) <= tol * scale && std::fabs(u.y - v.y) <= tol * scale;
+  auto near = [tol, floor](const Vec2& u, const Vec2& v) {
+    const double d = tol * (1 + std::max(std::fabs(u.x), std::fabs(u.y))) + floor;
+    return std::fabs(u.x - v.x) <= d && std::fabs(u.y - v.y) <= d;
   };
   auto same = [&](const Piece& x, const Piece& y) {
     return (near(x.p, y.p) && near(x.q, y.q)) || (near(x.p, y.q) && near(x.q, y.p));
@@ -50,7 +54,7 @@ inline std::string same_pieces(const std::vector<Piece>& subdivision, const std:
             // The joint within tol (at its scale, as near) of the line through the outer ends.
             const double ux = y.q.x - x.p.x, uy = y.q.y - x.p.y, wx = x.q.x - x.p.x, wy = x.q.y - x.p.y;
             const double len = std::hypot(ux, uy), scale = 1 + std::max(std::fabs(x.q.x), std::fabs(x.q.y));
-            if (len == 0 || std::fabs(ux * wy - uy * wx) > tol * scale * len || ux * wx + uy * wy <= 0 ||
+            if (len == 0 || std::fabs(ux * wy - uy * wx) > (tol * scale + floor) * len || ux * wx + uy * wy <= 0 ||
                 ux * wx + uy * wy >= len * len)
               continue;
             x.q = y.q;

@@ -50,7 +50,7 @@ struct Bisector {
       return;
     }
     // Parallel: the middle line. In line, they meet only where they share an end whose
-    // point has a region of no width beside them (sweep.cpp, segments_in_line): along the
+    // point has a region of no width beside them (zero_width.hpp): along the
     // perpendicular there.
     along_y = !hs;
     mid_f = hs ? 0.5 * double(s.a.y + t.a.y) : 0.5 * double(s.a.x + t.a.x);
