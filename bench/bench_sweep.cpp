@@ -5,6 +5,7 @@
 //   build/bench_sweep runs NAME FILE [NAME FILE ...]       layers (bench/bench_sweep_layers.py)
 //   build/bench_sweep tiles runs [NAME FILE ...]           the sweep in tiles, 1 and 2 threads
 //   build/bench_sweep memory WIRES TILE THREADS             one build, for /usr/bin/time -v
+//   build/bench_sweep curved runs                          disks, a ring and round pads (slanted edges)
 //   build/bench_sweep check runs NAME FILE|wires:N ...     the checker, sampled and full, against the build
 //
 // Prints one markdown row an input: the best of `runs` timings of each (alternating), the
@@ -92,7 +93,8 @@ std::vector<Polygon> bent_wires(std::size_t n, std::uint64_t seed) {
   return out;
 }
 
-void row(const std::string& name, const Sites& s, int runs, bool with_subdivision = true) {
+// One row; returns the sweep's best time.
+double row(const std::string& name, const Sites& s, int runs, bool with_subdivision = true) {
   std::vector<boost::polygon::point_data<int>> bp;
   std::vector<boost::polygon::segment_data<int>> bs;
   std::size_t n = 0;
@@ -117,11 +119,49 @@ void row(const std::string& name, const Sites& s, int runs, bool with_subdivisio
   if (!with_subdivision) {
     std::printf("| %s | %zu / %zu | %.3f s | %.3f s | — | %.2f | — | — |\n", name.c_str(), n, bs.size(), tb, ts, ts / tb);
     std::fflush(stdout);
-    return;
+    return ts;
   }
   std::printf("| %s | %zu / %zu | %.3f s | %.3f s | %.3f s | %.2f | %.2f | %s |\n", name.c_str(), n, bs.size(), tb, ts, tsub,
               ts / tb, tsub / ts, ns == nsub ? "yes" : "NO");
   std::fflush(stdout);
+  return ts;
+}
+
+// A disk drawn with n vertices (rounded to the grid, repeats dropped), counter-clockwise.
+Ring disk(Coord cx, Coord cy, double r, int n) {
+  Ring ring;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * M_PI * k / n;
+    const Point p{cx + Coord(std::lround(r * std::cos(a))), cy + Coord(std::lround(r * std::sin(a)))};
+    if (ring.empty() || !(ring.back() == p)) ring.push_back(p);
+  }
+  return ring;
+}
+
+// Curved shapes (slanted edges of every slope: the sweep's 256-bit balls) against Boost and the
+// subdivision, then each one's sweep time a site against a Manhattan layer's (generated wires)
+// in the same run.
+void curved(int runs) {
+  std::vector<std::pair<std::string, std::vector<Polygon>>> inputs;
+  inputs.push_back({"disk, 4,096 vertices, r = 10^7 DBU", {{disk(0, 0, 1e7, 4096), {}}}});
+  inputs.push_back({"disk, 2,048 vertices, r = 50,000 DBU (near-collinear runs)", {{disk(0, 0, 50000, 2048), {}}}});
+  Ring hole = disk(120000, -70000, 4e5, 512);
+  std::reverse(hole.begin(), hole.end());
+  inputs.push_back({"ring, 1,024 + 512 vertices", {{disk(0, 0, 1e6, 1024), {hole}}}});
+  std::vector<Polygon> pads;
+  for (int i = 0; i < 50; ++i)
+    for (int j = 0; j < 50; ++j) pads.push_back({disk(900 * i, 900 * j + (i % 2) * 300, 300 + (i * 7 + j * 13) % 60, 64), {}});
+  inputs.push_back({"2,500 round pads of 64 vertices", pads});
+  std::vector<std::pair<std::string, double>> per_site;
+  for (const auto& in : inputs) {
+    const Sites s = sites_of_polygons(merge_polygons(in.second));
+    per_site.push_back({in.first, row(in.first, s, runs) / double(s.sites.size())});
+  }
+  const Sites m = sites_of_polygons(merge_polygons(wires(40000, 4)));
+  const double manhattan = row("generated wires (Manhattan, the reference)", m, runs) / double(m.sites.size());
+  std::printf("\n| input | sweep a site | / Manhattan's |\n|---|---|---|\n");
+  for (const auto& p : per_site) std::printf("| %s | %.2f us | %.2f |\n", p.first.c_str(), 1e6 * p.second, p.second / manhattan);
+  std::printf("| generated wires (Manhattan) | %.2f us | 1.00 |\n", 1e6 * manhattan);
 }
 
 // The sweep tile by tile (tiles.hpp) against itself on the whole layer: automatic tiles on
@@ -233,6 +273,12 @@ int main(int argc, char** argv) {
                                                               : read_polygons(file.c_str()))),
                 runs);
     }
+    return 0;
+  }
+  if (argc > 1 && std::string(argv[1]) == "curved") {  // bench_sweep curved RUNS
+    std::printf("| input | points / segments | Boost.Polygon L2, 1 thread | sweep, 1 thread | subdivision, 1 thread | "
+                "sweep / Boost | subdivision / sweep | same pieces |\n|---|---|---|---|---|---|---|---|\n");
+    curved(argc > 2 ? std::atoi(argv[2]) : 3);
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "tiles") {  // bench_sweep tiles RUNS [NAME FILE ...]
