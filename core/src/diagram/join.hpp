@@ -55,10 +55,19 @@ inline void join_run(const Piece* first, const Piece* last, std::vector<char>& u
     const bool same = (close(x.p, y.p) && close(x.q, y.q)) || (close(x.p, y.q) && close(x.q, y.p));
     return same || inside(x, y.p) || inside(x, y.q) || inside(y, x.p) || inside(y, x.q);
   };
-  auto cover = [](Piece& x, const Piece& y) {  // x becomes the union of both, along x's direction
+  auto cover = [](Piece& x, const Piece& y) {  // x becomes the union of both, along the longer one
     const double ux = x.q.x - x.p.x, uy = x.q.y - x.p.y, ll = ux * ux + uy * uy;
-    if (ll == 0) {  // x is a point (far out, rounding may put it inside y): the union is y
-      x.p = y.p, x.q = y.q, x.d1 = y.d1, x.d2 = y.d2;
+    const double vx = y.q.x - y.p.x, vy = y.q.y - y.p.y;
+    if (vx * vx + vy * vy > ll) {
+      // x is the shorter: a point far out, or a crumb of rounding at y's end whose own
+      // direction is noise (a copy of a steep edge's corner 3e-8 long, sideways): along x
+      // the union would be x again and y lost (a subdivision finding near 2^24).
+      Piece u = y;
+      const double sp = (x.p.x - u.p.x) * vx + (x.p.y - u.p.y) * vy, sq = (x.q.x - u.p.x) * vx + (x.q.y - u.p.y) * vy;
+      const double mm = vx * vx + vy * vy;
+      if (std::min(sp, sq) < 0) u.p = sp <= sq ? x.p : x.q, u.d1 = sp <= sq ? x.d1 : x.d2;
+      if (std::max(sp, sq) > mm) u.q = sp <= sq ? x.q : x.p, u.d2 = sp <= sq ? x.d2 : x.d1;
+      x.p = u.p, x.q = u.q, x.d1 = u.d1, x.d2 = u.d2;
       return;
     }
     const double sp = (y.p.x - x.p.x) * ux + (y.p.y - x.p.y) * uy, sq = (y.q.x - x.p.x) * ux + (y.q.y - x.p.y) * uy;

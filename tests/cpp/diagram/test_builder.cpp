@@ -351,3 +351,27 @@ TEST(Builder, JoinKeepsOneOfOverlappingCopies) {
     EXPECT_EQ(v[0].d2, v[0].q.y - 51197);
   } while (std::next_permutation(order.begin(), order.end()));
 }
+
+TEST(Builder, JoinKeepsAPieceWhoseEndHasACrumbOfRounding) {
+  // A fuzzer finding near 2^24: at a steep edge's corner the subdivision left, beside the
+  // corner's separator in two parts, a crumb 3e-8 long running sideways. The union was taken
+  // along the crumb, the shorter, and the separator was lost (the check failed). One piece
+  // from the corner down, whatever the order.
+  const double y0 = 16777218;
+  auto piece = [](double x1, double y1, double x2, double y2) {
+    Piece p;
+    p.p = {x1, y1}, p.q = {x2, y2}, p.a = 30, p.b = 31;
+    return p;
+  };
+  const std::vector<Piece> parts{piece(-245, y0, -245, y0 - 1), piece(-245, y0 - 1, -245, y0 - 1.5),
+                                 piece(-245.00000002208981, y0 + 2.2e-8, -244.9999999999709, y0 + 2.2e-8)};
+  for (int order = 0; order < 3; ++order) {
+    std::vector<Piece> v{parts[order], parts[(order + 1) % 3], parts[(order + 2) % 3]};
+    std::sort(v.begin(), v.end(), join_order);
+    join_pair(v);
+    ASSERT_EQ(v.size(), 1u) << "order " << order;
+    EXPECT_NEAR(std::fabs(v[0].p.y - v[0].q.y), 1.5, 1e-7) << "order " << order;
+    EXPECT_NEAR(v[0].p.x, -245, 1e-7);
+    EXPECT_NEAR(v[0].q.x, -245, 1e-7);
+  }
+}
