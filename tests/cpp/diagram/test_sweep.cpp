@@ -52,6 +52,18 @@ std::vector<Polygon> moved(std::vector<Polygon> v, Coord dx, Coord dy) {
   return v;
 }
 
+// Each case again, moved to the corner (2^30, -2^30), 100 DBU inside.
+void add_copies_near_the_limit(std::vector<std::vector<Polygon>>& cases) {
+  const std::size_t n = cases.size();
+  for (std::size_t c = 0; c < n; ++c) {
+    std::vector<Polygon> far = cases[c];
+    Coord hi_x = -(Coord(1) << 30), lo_y = Coord(1) << 30;
+    for (const Polygon& p : far)
+      for (const Point& v : p.outer) hi_x = std::max(hi_x, v.x), lo_y = std::min(lo_y, v.y);
+    cases.push_back(moved(far, (Coord(1) << 30) - 100 - hi_x, -(Coord(1) << 30) + 100 - lo_y));
+  }
+}
+
 // Each case, merged, taken by the sweep and built as by the subdivision.
 void expect_as_the_subdivision(const std::vector<std::vector<Polygon>>& cases) {
   for (std::size_t c = 0; c < cases.size(); ++c) {
@@ -202,14 +214,7 @@ TEST(Sweep, DegenerateAnyAngleAsTheSubdivision) {
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) disks.push_back(Polygon{disk(700 * i, 700 * j + (i % 2) * 200, 320, 96), {}});
   cases.push_back(disks);
-  const std::size_t n = cases.size();
-  for (std::size_t c = 0; c < n; ++c) {  // to the corner (2^30, -2^30), 100 DBU inside
-    std::vector<Polygon> far = cases[c];
-    Coord hi_x = -(Coord(1) << 30), lo_y = Coord(1) << 30;
-    for (const Polygon& p : far)
-      for (const Point& v : p.outer) hi_x = std::max(hi_x, v.x), lo_y = std::min(lo_y, v.y);
-    cases.push_back(moved(far, (Coord(1) << 30) - 100 - hi_x, -(Coord(1) << 30) + 100 - lo_y));
-  }
+  add_copies_near_the_limit(cases);
   expect_as_the_subdivision(cases);
 }
 
@@ -319,14 +324,7 @@ TEST(Sweep, DegenerateOctilinearAsTheSubdivision) {
                    Polygon{{{1291, 95}, {10, 95}, {10, 1430}, {124, 1430}, {124, 95}, {65, 95}, {65, 592}, {50, 607}, {50, 607}, {50, 95}, {117, 95}, {117, 1888}, {1291, 1888}}, {}},
                    Polygon{{{3082, 2911}, {6923, 2911}, {6923, 2912}, {3082, 2912}}, {}},
                    Polygon{{{1290, 351}, {229, 351}, {10, 132}, {10, 132}, {152, 132}, {152, 97}, {90, 97}, {90, 864}, {1290, 864}}, {}}});
-  const std::size_t n = cases.size();
-  for (std::size_t c = 0; c < n; ++c) {  // to the corner (2^30, -2^30), 100 DBU inside
-    std::vector<Polygon> far = cases[c];
-    Coord hi_x = -(Coord(1) << 30), lo_y = Coord(1) << 30;
-    for (const Polygon& p : far)
-      for (const Point& v : p.outer) hi_x = std::max(hi_x, v.x), lo_y = std::min(lo_y, v.y);
-    cases.push_back(moved(far, (Coord(1) << 30) - 100 - hi_x, -(Coord(1) << 30) + 100 - lo_y));
-  }
+  add_copies_near_the_limit(cases);
   expect_as_the_subdivision(cases);
 }
 
