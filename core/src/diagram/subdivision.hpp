@@ -560,6 +560,11 @@ class Builder {
       for (const std::size_t cj : down)
         if (ties(value(cj, p), value(cj, q))) tied.push_back(C[cj]);
       std::sort(tied.begin() + 1, tied.end());  // the sites' order, as C's: near-ties decide alike
+      // A region of no width: a slanted edge's slanted piece meets its axis piece along a
+      // diagonal where that axis piece ties with other sites over an area (a steep edge with a
+      // point at its end's x), and the rounding of the clip leaves t a sliver along that line,
+      // where t ties but loses to the sites tied there just inside as well as beyond.
+      if (detail::steep_edge(m_.S[t]) && m_.owner_beyond(m, Vec2{-nrm.x, -nrm.y}, tied) != t) continue;
       // Only sites that also share the least slope across the edge go to the L1 tie-break.
       // hypot(x, 0) is |x| (C's Annex F): an axis-parallel edge's length without hypot's cost.
       const double len = nrm.x == 0 ? std::fabs(nrm.y) : nrm.y == 0 ? std::fabs(nrm.x) : std::hypot(nrm.x, nrm.y);

@@ -257,6 +257,81 @@ TEST(Sweep, ZeroWidthCornerOfTwoSteepEdgesAsTheSubdivision) {
   }
 }
 
+namespace {
+
+// Both builders on the polygons, whole (no tiles), within the fuzzer's allowance.
+std::string difference_of_polygons(const std::vector<Polygon>& polygons) {
+  DiagramOptions o;
+  o.build.threads = 1;
+  const Result sub = voronoi_of_polygons(polygons, o);
+  if (!sub.check.ok()) return "the subdivision fails its check";
+  o.sweep = true;
+  o.check = false;
+  const Result sw = voronoi_of_polygons(polygons, o);
+  const Box& c = sub.diagram.clip;
+  const double floor = 1e-12 * std::max({1.0, std::fabs(c.x1), std::fabs(c.x2), std::fabs(c.y1), std::fabs(c.y2)});
+  return linf::fuzz::same_pieces(sub.diagram.pieces, sw.diagram.pieces, 1e-9, floor);
+}
+
+}  // namespace
+
+TEST(Sweep, TheComparisonFindsAMovedMissingOrRelabelledPiece) {
+  auto piece = [](int a, int b, double x1, double y1, double x2, double y2) {
+    Piece p;
+    p.a = a, p.b = b, p.p = {x1, y1}, p.q = {x2, y2};
+    return p;
+  };
+  const std::vector<Piece> sub{piece(0, 1, 0, 0, 10, 10), piece(1, 2, 10, 10, 20, 10)};
+  std::vector<Piece> sw = sub;
+  EXPECT_EQ(linf::fuzz::same_pieces(sub, sw, 1e-9), "");
+  std::swap(sw[0].p, sw[0].q), std::swap(sw[0].a, sw[0].b);  // either way round
+  EXPECT_EQ(linf::fuzz::same_pieces(sub, sw, 1e-9), "");
+  sw = sub, sw[0] = piece(0, 1, 0, 0, 4, 4), sw.push_back(piece(0, 1, 4, 4, 10, 10));  // in two
+  EXPECT_EQ(linf::fuzz::same_pieces(sub, sw, 1e-9), "");
+  sw = sub, sw[0].q = {10, 10.001};
+  EXPECT_NE(linf::fuzz::same_pieces(sub, sw, 1e-9), "");
+  sw = sub, sw.pop_back();
+  EXPECT_NE(linf::fuzz::same_pieces(sub, sw, 1e-9), "");
+  sw = sub, sw[1].b = 3;
+  EXPECT_NE(linf::fuzz::same_pieces(sub, sw, 1e-9), "");
+  sw = sub, sw[0] = piece(0, 1, 0, 0, 4, 4), sw.push_back(piece(0, 1, 5, 5, 10, 10));  // a gap of one
+  EXPECT_NE(linf::fuzz::same_pieces(sub, sw, 1e-9), "");
+  EXPECT_NE(linf::fuzz::same_pieces(sw, sub, 1e-9), "");
+}
+
+TEST(Sweep, SteepEdgeTiedWithAPointAtItsEndsXAsTheSubdivision) {
+  // A fuzzer finding: the edge (-247, 16819455)-(-245, 16777227) and the corner (-247, 16777227)
+  // are at the same L-inf distance over the whole area left of them where the edge's upper end
+  // is its nearest point, and the L1 tie-break gives it the corner. Beside it, where the edge's
+  // own slanted piece takes over, the two meet along a diagonal: the subdivision's rounding of
+  // that line left the edge a sliver, and it reported pieces 27-30, 27-31, 27-32 along it, 2e5
+  // DBU long, that the sweep rightly does not.
+  const std::vector<Polygon> p{
+      {{{-247, 16777215}, {-244, 16777215}, {-244, 16777218}, {-247, 16777218}}, {}},
+      {{{-226, 16777215}, {-223, 16777215}, {-223, 16973823}, {-226, 16973823}}, {}},
+      {{{196358, 16820223}, {-247, 16777215}, {-247, 16777215}, {5129, 16777215}, {-247, 16819455}, {-244, 16777215}}, {}},
+      {{{-247, 16955391}, {57581, 16955391}, {57581, 17013219}, {-247, 17013219}}, {}},
+      {{{57578, 16835040}, {57578, 16835040}, {42002, 16777218}}, {}},
+      {{{-247, 16777215}, {177932, 16777215}, {177932, 16777227}, {-247, 16777227}}, {}}};
+  EXPECT_EQ(difference_of_polygons(p), "");
+}
+
+TEST(Sweep, VertexOfNearlyParallelEdgesWithinTheSubdivisionsAllowance) {
+  // A fuzzer finding: the edges y = 1 and (2753, 1)-(178118, 10), of slope 5e-5, have distance
+  // functions that part by 5e-5 per DBU, so the subdivision, deciding within 4e-7 of the
+  // functions, placed their vertex with the steep edge (-247, 196606)-(-226, 1) 6e-4 DBU along
+  // the diagonal past the sweep's, its piece running on beside the next one of that edge. The
+  // comparison takes it: the pieces cover each other.
+  const std::vector<Polygon> p{
+      {{{521, 166}, {524, 166}, {524, 193705}, {521, 193705}}, {}},
+      {{{178118, 10}, {329, 1}, {-247, 1}, {-226, 1}, {-247, 196606}, {196358, 766}}, {}},
+      {{{-247, 1}, {-244, 1}, {-244, 4}, {-247, 4}}, {}},
+      {{{-226, 1}, {-223, 1}, {-223, 937}, {-226, 937}}, {}},
+      {{{-247, 1}, {-244, 1}, {-244, 3004}, {-247, 3004}}, {}},
+      {{{-244, 1}, {518, 1}, {2753, 1}, {-247, 1}}, {}}};
+  EXPECT_EQ(difference_of_polygons(p), "");
+}
+
 TEST(Sweep, AnyAngleBlocksAsTheSubdivisionAndTheChecker) {
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     Diagram d;
