@@ -72,9 +72,10 @@ inline bool part_near(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b
   return t0 <= t1;
 }
 
-// "" if each side's pieces are covered as above; else the first piece that is not.
+// "" if each side's pieces are covered as above; else the first piece that is not (its owners
+// in `owners`, if given).
 inline std::string same_pieces(const std::vector<Piece>& subdivision, const std::vector<Piece>& sweep, double tol,
-                               double floor = 0) {
+                               double floor = 0, std::pair<int, int>* owners = nullptr) {
   auto allowance = [tol, floor](const Vec2& u) { return tol * (1 + std::max(std::fabs(u.x), std::fabs(u.y))) + floor; };
   auto point_like = [&](const Piece& x) {
     const double d = allowance(x.p);
@@ -101,7 +102,8 @@ inline std::string same_pieces(const std::vector<Piece>& subdivision, const std:
     }
     return reach >= 1;
   };
-  auto report = [](const char* who, const Piece& x) {
+  auto report = [owners](const char* who, const Piece& x) {
+    if (owners) *owners = {x.a, x.b};
     char m[300];
     std::snprintf(m, sizeof m, "only the %s has %d-%d (%.17g,%.17g)-(%.17g,%.17g)", who, x.a, x.b, x.p.x, x.p.y, x.q.x,
                   x.q.y);
