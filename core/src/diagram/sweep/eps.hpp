@@ -160,14 +160,21 @@ struct RatioT {
 };
 using Ratio = RatioT<std::int64_t>;
 
-// The sign of a - b at 0+. The constant terms decide almost always (one product each way).
+// Whether every coefficient lies within 2^60: then the sums of the products below (at most
+// eight of two such factors) stay within 2^123, and 128 bits hold them exactly. Most of a
+// 128-bit tier's numbers do (round pads: coordinates of 10^4 DBU, normals of 10^2), and the
+// 128-bit products cost far less than the long-double filter's conversions or 256-bit ones.
 template <typename I>
-int compare(const RatioT<I>& a, const RatioT<I>& b) {
-  using W = typename WideOf<I>::type;
-  if constexpr (!std::is_same_v<I, std::int64_t>) {
-    const int f = filtered_sign(a.num.c[0], b.den.c[0], b.num.c[0], a.den.c[0]);
-    if (f != 0) return f;
-  }
+bool within60(const EpsT<I>& e) {
+  const I lim = I(std::int64_t(1) << 60);
+  for (const I& v : e.c)
+    if (v > lim || v < -lim) return false;
+  return true;
+}
+
+// The sign of a - b at 0+, exactly, with products in W.
+template <typename W, typename I>
+int compare_in(const RatioT<I>& a, const RatioT<I>& b) {
   const W l0 = W(a.num.c[0]) * W(b.den.c[0]), r0 = W(b.num.c[0]) * W(a.den.c[0]);
   if (l0 != r0) return l0 < r0 ? -1 : 1;
   if (a.den.c == b.den.c) {  // ties on the grid: often one denominator (or the same event)
@@ -184,14 +191,23 @@ int compare(const RatioT<I>& a, const RatioT<I>& b) {
   return 0;
 }
 
-// The sign at 0+ of a * d - b * c, every order kept (the four may be cubic).
+// The sign of a - b at 0+. The constant terms decide almost always (one product each way).
 template <typename I>
-int sign_of_cross(const EpsT<I>& a, const EpsT<I>& b, const EpsT<I>& c, const EpsT<I>& d) {
-  using W = typename WideOf<I>::type;
-  if constexpr (!std::is_same_v<I, std::int64_t>) {
-    const int f = filtered_sign(a.c[0], d.c[0], b.c[0], c.c[0]);
+int compare(const RatioT<I>& a, const RatioT<I>& b) {
+  if constexpr (std::is_same_v<I, std::int64_t>) {
+    return compare_in<__int128>(a, b);
+  } else {
+    if constexpr (std::is_same_v<I, __int128>)
+      if (within60(a.num) && within60(a.den) && within60(b.num) && within60(b.den)) return compare_in<__int128>(a, b);
+    const int f = filtered_sign(a.num.c[0], b.den.c[0], b.num.c[0], a.den.c[0]);
     if (f != 0) return f;
+    return compare_in<typename WideOf<I>::type>(a, b);
   }
+}
+
+// The sign at 0+ of a * d - b * c, every order kept, with products in W.
+template <typename W, typename I>
+int sign_of_cross_in(const EpsT<I>& a, const EpsT<I>& b, const EpsT<I>& c, const EpsT<I>& d) {
   for (int k = 0; k < 2 * kTerms - 1; ++k) {
     const int lo = std::max(0, k - kTerms + 1), hi = std::min(k, kTerms - 1);
     W v = 0;
@@ -199,6 +215,20 @@ int sign_of_cross(const EpsT<I>& a, const EpsT<I>& b, const EpsT<I>& c, const Ep
     if (v != 0) return v < 0 ? -1 : 1;
   }
   return 0;
+}
+
+// The sign at 0+ of a * d - b * c, every order kept (the four may be cubic).
+template <typename I>
+int sign_of_cross(const EpsT<I>& a, const EpsT<I>& b, const EpsT<I>& c, const EpsT<I>& d) {
+  if constexpr (std::is_same_v<I, std::int64_t>) {
+    return sign_of_cross_in<__int128>(a, b, c, d);
+  } else {
+    if constexpr (std::is_same_v<I, __int128>)
+      if (within60(a) && within60(b) && within60(c) && within60(d)) return sign_of_cross_in<__int128>(a, b, c, d);
+    const int f = filtered_sign(a.c[0], d.c[0], b.c[0], c.c[0]);
+    if (f != 0) return f;
+    return sign_of_cross_in<typename WideOf<I>::type>(a, b, c, d);
+  }
 }
 
 }  // namespace linf::sweep
