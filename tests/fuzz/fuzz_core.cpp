@@ -6,8 +6,8 @@
 // far-field pass) varied. Findings, each aborting the run:
 //   the diagram: the checker rejects it (DiagramError), unless a known fault that is not fixed
 //     yet explains it (known.hpp: counted and reported when the run ends); or a piece ends where
-//     its owners still own either side beyond it (ends_check.hpp: a piece missing); or, on a
-//     the sweep-line builder's pieces differ from it (sweep_check.hpp; unless a known fault of
+//     its owners still own either side beyond it (ends_check.hpp: a piece missing); or the
+//     sweep-line builder's pieces differ from it (sweep_check.hpp; unless a known fault of
 //     the subdivision explains it and the sweep passes a full check), or its pieces in tiles
 //     differ from its whole layer's by a bit;
 //   the farthest diagram of crossing segments, points and convex polygons taken from the same
@@ -103,8 +103,9 @@ void sweep(const Layout& L, DiagramOptions opt, const Result& subdivision) {
     // The sweep, then, passes a full check (every piece searched, ten times the pairs).
     CheckOptions full;
     full.search_every = 1, full.crossing_pairs = 20000, full.threads = 1;
-    const CheckReport c = check_diagram(r.diagram, full);
-    if (!c.ok()) fail("the sweep's full check", c.messages.empty() ? "failed" : c.messages[0].c_str());
+    const CheckReport checked = check_diagram(r.diagram, full);
+    if (!checked.ok())
+      fail("the sweep's full check", checked.messages.empty() ? "failed" : checked.messages[0].c_str());
     known::count(f);
   }
   if (opt.build.tile_size == 0) return;
