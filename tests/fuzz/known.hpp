@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "diagram/affine.hpp"  // steep_edge: neither axis-parallel nor at 45 degrees
 #include "linf/geometry/site.hpp"
 
 namespace linf::fuzz::known {
@@ -59,18 +60,15 @@ inline Fault of_diagram(const std::vector<Point>& /*points*/, const std::vector<
 
 // Which known fault may explain the sweep and the subdivision disagreeing on a piece of the
 // sites `owners` (sites S): SubdivisionNearlyParallelEdges if an owner is an edge nearly
-// parallel to another edge of the layer (one of them slanted), or a point at the end of one.
+// parallel to another edge of the layer (one of them steep: neither axis-parallel nor at 45
+// degrees), or a point at the end of one.
 inline Fault of_comparison(const SiteList& S, std::pair<int, int> owners) {
-  auto slanted = [](const Site& s) {
-    const std::int64_t dx = s.b.x - s.a.x, dy = s.b.y - s.a.y;
-    return dx != 0 && dy != 0 && std::llabs(dx) != std::llabs(dy);
-  };
   auto nearly_parallel = [&](int i) {
     const Site& s = S[std::size_t(i)];
     if (s.is_point()) return false;
     const double ux = double(s.b.x - s.a.x), uy = double(s.b.y - s.a.y);
     for (const Site& t : S) {
-      if (t.is_point() || (!slanted(s) && !slanted(t))) continue;
+      if (t.is_point() || (!linf::detail::steep_edge(s) && !linf::detail::steep_edge(t))) continue;
       const double vx = double(t.b.x - t.a.x), vy = double(t.b.y - t.a.y);
       const double sine = std::fabs(ux * vy - uy * vx) / (std::hypot(ux, uy) * std::hypot(vx, vy));
       if (sine > 0 && sine < 1e-4) return true;

@@ -73,6 +73,22 @@ void expect_as_the_subdivision(const std::vector<std::vector<Polygon>>& cases) {
   }
 }
 
+// Blocks of many small layouts (a few thousand sites): long beach lines, many coincident
+// events on the grid. Each taken by the sweep, as the subdivision, and passed by the
+// independent checker.
+void expect_blocks(linf::testing::Style style, std::uint64_t seeds) {
+  for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
+    Diagram d;
+    d.sites = sites_of_polygons(merge_polygons(linf::testing::block(seed, style, 6, 5)));
+    ASSERT_TRUE(sweep_handles(d.sites)) << "seed " << seed;
+    ASSERT_EQ(difference(d.sites), "") << "seed " << seed;
+    d.clip = clip_box(d.sites);
+    d.pieces = sweep_pieces(d.sites, d.clip);
+    const CheckReport r = check_diagram(d);
+    ASSERT_TRUE(r.ok()) << "seed " << seed << ": " << (r.messages.empty() ? "" : r.messages[0]);
+  }
+}
+
 std::vector<Point> random_points(std::uint64_t seed, int n, int range) {
   std::mt19937_64 rng(seed);
   std::uniform_int_distribution<int> c(-range, range);
@@ -332,17 +348,7 @@ TEST(Sweep, VertexOfNearlyParallelEdgesWithinTheSubdivisionsAllowance) {
   EXPECT_EQ(difference_of_polygons(p), "");
 }
 
-TEST(Sweep, AnyAngleBlocksAsTheSubdivisionAndTheChecker) {
-  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
-    Diagram d;
-    d.sites = sites_of_polygons(merge_polygons(linf::testing::block(seed, linf::testing::Style::AnyAngle, 6, 5)));
-    ASSERT_EQ(difference(d.sites), "") << "seed " << seed;
-    d.clip = clip_box(d.sites);
-    d.pieces = sweep_pieces(d.sites, d.clip);
-    const CheckReport r = check_diagram(d);
-    ASSERT_TRUE(r.ok()) << "seed " << seed << ": " << (r.messages.empty() ? "" : r.messages[0]);
-  }
-}
+TEST(Sweep, AnyAngleBlocksAsTheSubdivisionAndTheChecker) { expect_blocks(linf::testing::Style::AnyAngle, 6); }
 
 TEST(Sweep, DegenerateManhattanAsTheSubdivision) {
   // What a grid makes of L-inf: slivers one DBU wide, boxes meeting at a corner, collinear
@@ -403,35 +409,9 @@ TEST(Sweep, DegenerateOctilinearAsTheSubdivision) {
   expect_as_the_subdivision(cases);
 }
 
-TEST(Sweep, OctilinearBlocksAsTheSubdivisionAndTheChecker) {
-  int taken = 0;
-  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
-    Diagram d;
-    d.sites = sites_of_polygons(merge_polygons(linf::testing::block(seed, linf::testing::Style::Octilinear, 6, 5)));
-    if (!sweep_handles(d.sites)) continue;
-    ++taken;
-    ASSERT_EQ(difference(d.sites), "") << "seed " << seed;
-    d.clip = clip_box(d.sites);
-    d.pieces = sweep_pieces(d.sites, d.clip);
-    const CheckReport r = check_diagram(d);
-    ASSERT_TRUE(r.ok()) << "seed " << seed << ": " << (r.messages.empty() ? "" : r.messages[0]);
-  }
-  EXPECT_GE(taken, 3);
-}
+TEST(Sweep, OctilinearBlocksAsTheSubdivisionAndTheChecker) { expect_blocks(linf::testing::Style::Octilinear, 12); }
 
-TEST(Sweep, ManhattanBlocksAsTheSubdivisionAndTheChecker) {
-  // Blocks of many small layouts (a few thousand sites): long beach lines, many coincident
-  // events on the grid; and the independent checker on the sweep's diagram.
-  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
-    Diagram d;
-    d.sites = sites_of_polygons(merge_polygons(linf::testing::block(seed, linf::testing::Style::Rectilinear, 6, 5)));
-    ASSERT_EQ(difference(d.sites), "") << "seed " << seed;
-    d.clip = clip_box(d.sites);
-    d.pieces = sweep_pieces(d.sites, d.clip);
-    const CheckReport r = check_diagram(d);
-    ASSERT_TRUE(r.ok()) << "seed " << seed << ": " << (r.messages.empty() ? "" : r.messages[0]);
-  }
-}
+TEST(Sweep, ManhattanBlocksAsTheSubdivisionAndTheChecker) { expect_blocks(linf::testing::Style::Rectilinear, 6); }
 
 TEST(Sweep, Stress) {
   const char* env = std::getenv("SWEEP_STRESS");
