@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -192,12 +193,21 @@ bool measurable(const Sites& s, const Stretch& st) { return measurable(s, st.a, 
 
 double least(const Stretch& st) { return *std::min_element(st.clearance.begin(), st.clearance.end()); }
 
+// job(i) for i in [0, n), in blocks on `threads` threads (0: one per core), for loops whose
+// iterations write only their own entry: the stretches of a full layer are millions.
+void in_blocks(std::size_t n, int threads, const std::function<void(std::size_t)>& job) {
+  constexpr std::size_t kBlock = 4096;
+  detail::parallel_for((n + kBlock - 1) / kBlock, threads, [&](unsigned, std::size_t b) {
+    for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) job(i);
+  });
+}
+
 // One gap, one gauge. In L-inf the gap between two edges continues past a corner into the
 // corner vertex's bisector at the same clearance, and three sites meeting at a point give
 // point stretches too. A stretch is redundant when a related stretch (each owner replaced by
 // itself, its edges if a vertex, or its endpoints if an edge) that is preferred is at least as
 // narrow. Preferred: a chain over a point stretch, then fewer vertex owners.
-std::vector<bool> redundant(const Sites& s, const Stretches& all, const std::vector<bool>& ok) {
+std::vector<char> redundant(const Sites& s, const Stretches& all, const std::vector<char>& ok, int threads) {
   auto vertices = [&](const Stretch& st) { return int(s.sites[st.a].is_point()) + int(s.sites[st.b].is_point()); };
   auto rank = [&](const Stretch& st) { return (st.path.size() == 1 ? 4 : 0) + vertices(st); };
   // (a, b, stretch) sorted: a flat index, where a map would cost more than the stretches.
@@ -210,26 +220,31 @@ std::vector<bool> redundant(const Sites& s, const Stretches& all, const std::vec
   for (std::size_t i = 0; i < all.size(); ++i)
     if (ok[i]) by_pair.push_back({all[i].a, all[i].b, std::uint32_t(i)});
   std::sort(by_pair.begin(), by_pair.end());
+  // Where each first owner's entries begin: a lookup scans a site's few pairs, not the index.
+  std::vector<std::uint32_t> from(s.sites.size() + 1, 0);
+  for (const ByPair& e : by_pair) ++from[std::size_t(e.a) + 1];
+  for (std::size_t k = 1; k < from.size(); ++k) from[k] += from[k - 1];
   auto related = [&](std::int32_t x) {  // an array, not a vector: called a few times a stretch
     const Site& t = s.sites[x];
     return std::array<std::int32_t, 3>{x, t.end0, t.end1};
   };
-  std::vector<bool> out(all.size(), false);
-  for (std::size_t i = 0; i < all.size(); ++i) {
+  // Each stretch's answer reads the others only: blocks on every core.
+  std::vector<char> out(all.size(), 0);
+  in_blocks(all.size(), threads, [&](std::size_t i) {
     const Stretch& st = all[i];
-    if (!ok[i] || rank(st) == 0) continue;
+    if (!ok[i] || rank(st) == 0) return;
     const double c = least(st);
     for (std::int32_t x : related(st.a))
       for (std::int32_t y : related(st.b)) {
         if (x < 0 || y < 0) continue;
         const std::int32_t lo = std::min(x, y), hi = std::max(x, y);
-        for (auto it = std::lower_bound(by_pair.begin(), by_pair.end(), ByPair{lo, hi, 0u});
-             it != by_pair.end() && it->a == lo && it->b == hi; ++it) {
-          const Stretch other = all[it->i];
-          if (rank(other) < rank(st) && least(other) <= c + kTol) out[i] = true;
+        for (std::uint32_t k = from[std::size_t(lo)]; k < from[std::size_t(lo) + 1]; ++k) {
+          if (by_pair[k].b != hi) continue;
+          const Stretch other = all[by_pair[k].i];
+          if (rank(other) < rank(st) && least(other) <= c + kTol) out[i] = 1;
         }
       }
-  }
+  });
   return out;
 }
 
@@ -404,9 +419,9 @@ Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& op
   Gauges r;
   r.stretches = std::move(stretches);
   const std::int32_t n = std::int32_t(r.stretches.size());
-  std::vector<bool> ok(n);
-  for (std::int32_t i = 0; i < n; ++i) ok[i] = measurable(sites, r.stretches[i]);
-  const std::vector<bool> extra = redundant(sites, r.stretches, ok);
+  std::vector<char> ok(std::size_t(n), 0);  // char, not bool: written from several threads
+  in_blocks(std::size_t(n), opt.threads, [&](std::size_t i) { ok[i] = measurable(sites, r.stretches[i]); });
+  const std::vector<char> extra = redundant(sites, r.stretches, ok, opt.threads);
   for (std::int32_t i = 0; i < n; ++i) ok[i] = ok[i] && !extra[i];
   // The typical width decides which spaces are pattern (see GaugeOptions::space_limit_widths).
   Paged<Weighted> widths;
@@ -420,7 +435,7 @@ Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& op
       ok[i] = false;
   // Only the stretches that make gauges or are a neighbour's from here on: the others go.
   r.measurable = std::size_t(n);
-  r.stretches.keep_only(ok);
+  r.stretches.keep_only(std::vector<bool>(ok.begin(), ok.end()));
   const std::int32_t m = std::int32_t(r.stretches.size());
   ExternalAt external_at;
   external_at.build(sites.sites.size(), r.stretches);
