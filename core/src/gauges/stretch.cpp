@@ -1,5 +1,7 @@
 #include "linf/gauges/stretch.hpp"
 
+#include "gauges/chain.hpp"
+
 #include "linf/geometry/distance.hpp"
 #include "linf/util/pages.hpp"
 #include "linf/util/round.hpp"
@@ -8,120 +10,15 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <set>
 #include <stdexcept>
 #include <tuple>
-#include <unordered_map>
 #include <utility>
 
 namespace linf {
 
-namespace {
-
-// Piece ends meet at exactly computed vertices up to rounding; a 1/1024 DBU grid joins them.
-// (A struct, not a std::pair: the held ends and point stretches live in Paged arrays, which
-// take only trivially copyable values.)
-struct Key {
-  long long x, y;
-  bool operator==(const Key& o) const { return x == o.x && y == o.y; }
-  bool operator<(const Key& o) const { return x < o.x || (x == o.x && y < o.y); }
-};
-Key key_of(const Vec2& v) { return {round_half_away(v.x * 1024.0), round_half_away(v.y * 1024.0)}; }
-
-struct KeyHash {
-  std::size_t operator()(const Key& k) const { return std::hash<long long>()(k.x * 1000003LL ^ k.y); }
-};
-
-double dist(const Vec2& a, const Vec2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
-
-// A piece's clearance is convex along it but not always linear: between two points on a
-// diagonal the L-inf bisector dips from both ends to the middle. Convexity means the midpoint
-// test finds every such dip; the dip's bottom is found by ternary search and becomes a path
-// point, so that the path's linear profile holds the true minimum.
-void refine(const Site& owner, const Vec2& u, const Vec2& v, double du, double dv, int depth, Stretches& out) {
-  auto at = [&](double t) { return Vec2{u.x + t * (v.x - u.x), u.y + t * (v.y - u.y)}; };
-  auto f = [&](double t) {
-    const Vec2 p = at(t);
-    return dist_site(p.x, p.y, owner);
-  };
-  const double tol = 1e-7 * (1.0 + std::max(du, dv));
-  if (depth > 0 && f(0.5) < 0.5 * (du + dv) - tol) {
-    double lo = 0, hi = 1;
-    for (int i = 0; i < 100 && hi - lo > 1e-12; ++i) {
-      const double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
-      (f(a) <= f(b) ? hi : lo) = (f(a) <= f(b) ? b : a);
-    }
-    const double t = 0.5 * (lo + hi), dt = f(t);
-    refine(owner, u, at(t), du, dt, depth - 1, out);
-    refine(owner, at(t), v, dt, dv, depth - 1, out);
-    return;
-  }
-  out.add(v, dv);
-}
-
-// Orders one owner pair's pieces into paths: start at an end of odd degree, walk while a
-// continuation exists, repeat until every piece is used.
-void chain(const Sites& sites, const Piece* pieces, const std::int32_t* ids, std::size_t n, Stretches& out) {
-  std::unordered_map<Key, std::vector<std::int32_t>, KeyHash> at;
-  std::vector<std::int32_t> real;
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::int32_t i = ids[k];
-    const Piece& p = pieces[i];
-    if (key_of(p.p) == key_of(p.q)) continue;
-    real.push_back(i);
-    at[key_of(p.p)].push_back(i);
-    at[key_of(p.q)].push_back(i);
-  }
-  const Piece& first = pieces[ids[0]];
-  const std::int32_t a = std::min(first.a, first.b), b = std::max(first.a, first.b);
-  if (real.empty()) {  // only degenerate pieces: one point
-    out.open(a, b, first.kind);
-    out.add(first.p, first.d1);
-    return;
-  }
-  std::set<std::int32_t> unused(real.begin(), real.end());
-  while (!unused.empty()) {
-    // Prefer a start of odd degree so that an open chain is walked from one end.
-    std::int32_t start = *unused.begin();
-    Key from = key_of(pieces[start].p);
-    for (std::int32_t i : unused) {
-      const Piece& p = pieces[i];
-      bool found = false;
-      for (const Key& k : {key_of(p.p), key_of(p.q)}) {
-        std::size_t deg = 0;
-        for (std::int32_t j : at[k]) deg += unused.count(j);
-        if (deg % 2 == 1) {
-          start = i;
-          from = k;
-          found = true;
-          break;
-        }
-      }
-      if (found) break;
-    }
-    out.open(a, b, pieces[start].kind);
-    std::int32_t cur = start;
-    while (cur >= 0) {
-      unused.erase(cur);
-      const Piece& p = pieces[cur];
-      const bool forward = key_of(p.p) == from;
-      const Vec2 u = forward ? p.p : p.q, v = forward ? p.q : p.p;
-      const double du = forward ? p.d1 : p.d2, dv = forward ? p.d2 : p.d1;
-      if (out.empty_path()) out.add(u, du);
-      out.lengthen(dist(u, v));
-      refine(sites.sites[p.a], u, v, du, dv, 3, out);
-      from = key_of(v);
-      cur = -1;
-      for (std::int32_t j : at[from])
-        if (unused.count(j)) {
-          cur = j;
-          break;
-        }
-    }
-  }
-}
-
-}  // namespace
+using detail::chain;
+using detail::Key;
+using detail::key_of;
 
 bool adjacent(const Sites& s, std::int32_t a, std::int32_t b) {
   const Site& x = s.sites[a];

@@ -8,7 +8,9 @@
 
 #include "linf/diagram/diagram.hpp"
 #include "linf/gauges/gauge.hpp"
+#include "linf/geometry/sites.hpp"
 #include "linf/gauges/stretch.hpp"
+#include "gauges/chain.hpp"
 #include "layouts.hpp"
 
 using namespace linf;
@@ -125,4 +127,36 @@ TEST(Stretches, KeepingSomeKeepsThemWhole) {
     ASSERT_TRUE((s.a == x.a && s.b == x.b) || x.type != GaugeType::Internal) << "gauge " << i + 1;
     if (x.neighbour >= 0) ASSERT_EQ(g.stretches[x.neighbour].kind, PieceKind::External);
   }
+}
+
+// A pair's pieces are walked into paths by flat arrays when they are few (chain_few) and by a
+// map and a set otherwise (chain_any): the same paths, to the last bit, on random graphs of up
+// to kFewPieces pieces between grid points: branches (vertices of degree 3 and 4, where the
+// odd-degree start decides), cycles, repeated pieces and pieces of no length.
+TEST(Stretches, FewPiecesAreWalkedAsMany) {
+  const Sites sites = sites_of_polygons({linf::testing::box(0, 0, 40, 10), linf::testing::box(0, 30, 40, 40)});
+  std::mt19937_64 rng(7);
+  std::size_t branched = 0;
+  for (int round = 0; round < 2000; ++round) {
+    const std::size_t n = 1 + rng() % detail::kFewPieces;
+    const int grid = 2 + int(rng() % 4);  // few grid points: vertices where many pieces meet
+    std::vector<Piece> pieces(n);
+    for (Piece& p : pieces) {
+      p.p = {double(rng() % grid) * 10, 12 + double(rng() % grid) * 4};
+      p.q = rng() % 8 == 0 ? p.p : Vec2{double(rng() % grid) * 10, 12 + double(rng() % grid) * 4};
+      p.d1 = 1 + double(rng() % 16), p.d2 = 1 + double(rng() % 16);
+      p.a = 1, p.b = 9;
+      p.kind = PieceKind(rng() % 2);
+    }
+    std::vector<std::int32_t> ids;
+    for (std::size_t i = 0; i < n; ++i)
+      if (i == 0 || rng() % 4 != 0) ids.push_back(std::int32_t(i));
+    Stretches few, any;
+    detail::chain_few(sites, pieces.data(), ids.data(), ids.size(), few);
+    detail::chain_any(sites, pieces.data(), ids.data(), ids.size(), any);
+    expect_same(any, few);
+    if (::testing::Test::HasFatalFailure()) return;
+    branched += any.size() > 1;
+  }
+  EXPECT_GT(branched, 1000u);  // most graphs need several paths: the start rule is exercised
 }
