@@ -6,19 +6,26 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <functional>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <mutex>
 #include <queue>
 #include <stdexcept>
+#include <thread>
+#include <utility>
 
 #include "linf/diagram/builder.hpp"
 #include "linf/diagram/classify.hpp"
 #include "linf/diagram/sweep.hpp"
 #include "linf/io/csv.hpp"
 #include "linf/geometry/sites.hpp"
+#include "util/parallel.hpp"
 #include "util/progress_meter.hpp"
 
 namespace linf {
@@ -124,6 +131,90 @@ void merge(const Runs& runs, const Pair& pair) {
   if (!group.empty()) pair(group);
 }
 
+// Joined pieces on their way to the checker, the writers and the stretches: whole owner pairs,
+// each pair's first piece at its entry of `starts`.
+struct Batch {
+  std::vector<Piece> pieces;
+  std::vector<std::size_t> starts;
+  void clear() { pieces.clear(), starts.clear(); }
+};
+
+// Hands batches to `work` in order: on a thread of its own, one batch behind the caller, or at
+// once on the caller's thread. Merging and joining the next batch then overlaps the checker and
+// the stretches taking this one, which are most of the pass after the tiles. The first
+// exception `work` throws is rethrown by the next give() or by finish().
+class Behind {
+ public:
+  Behind(bool threaded, std::function<void(Batch&)> work) : work_(std::move(work)) {
+    if (threaded) thread_ = std::thread([this] { run(); });
+  }
+  ~Behind() { stop(); }
+  Behind(const Behind&) = delete;
+  Behind& operator=(const Behind&) = delete;
+
+  // Takes b's contents and leaves it empty.
+  void give(Batch& b) {
+    if (!thread_.joinable()) {
+      work_(b);
+      b.clear();
+      return;
+    }
+    std::unique_lock<std::mutex> lock(m_);
+    cv_.wait(lock, [&] { return !full_ || failed_; });
+    if (failed_) std::rethrow_exception(failed_);
+    std::swap(slot_, b);
+    full_ = true;
+    b.clear();
+    cv_.notify_all();
+  }
+  // Waits for every batch given to be taken.
+  void finish() {
+    stop();
+    if (failed_) std::rethrow_exception(failed_);
+  }
+
+ private:
+  void run() {
+    Batch mine;
+    for (;;) {
+      {
+        std::unique_lock<std::mutex> lock(m_);
+        cv_.wait(lock, [&] { return full_ || done_; });
+        if (!full_) return;
+        std::swap(mine, slot_);
+        full_ = false;
+        cv_.notify_all();
+      }
+      try {
+        work_(mine);
+        mine.clear();
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(m_);
+        failed_ = std::current_exception();
+        cv_.notify_all();
+        return;
+      }
+    }
+  }
+  void stop() {
+    if (!thread_.joinable()) return;
+    {
+      std::lock_guard<std::mutex> lock(m_);
+      done_ = true;
+      cv_.notify_all();
+    }
+    thread_.join();
+  }
+
+  std::function<void(Batch&)> work_;
+  std::mutex m_;
+  std::condition_variable cv_;
+  Batch slot_;
+  bool full_ = false, done_ = false;
+  std::exception_ptr failed_;
+  std::thread thread_;  // last: started once the rest is ready
+};
+
 }  // namespace
 
 StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& opt, const StreamOutputs& out,
@@ -185,28 +276,25 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
   if (!out.csv.empty()) csv = std::make_unique<PiecesCsv>(out.csv, out.dbu);
   std::unique_ptr<GdsWriter> gds;
   if (!out.gds.empty()) gds = std::make_unique<GdsWriter>(out.gds, out.layers.dbu, out.layers.cell);
-  std::vector<Piece> batch;
-  std::vector<std::size_t> starts;  // where each pair's pieces begin in the batch
-  auto flush = [&] {
-    for (const Piece& p : batch) ++r.counts[std::size_t(p.kind)];
-    r.pieces += batch.size();
+  Behind behind(detail::worker_count(2, opt.build.threads) > 1, [&](Batch& b) {
+    for (const Piece& p : b.pieces) ++r.counts[std::size_t(p.kind)];
+    r.pieces += b.pieces.size();
     auto t = std::chrono::steady_clock::now();
-    if (checker) checker->add(batch.data(), batch.size());
+    if (checker) checker->add(b.pieces.data(), b.pieces.size());
     d.seconds_check += since(t);
     t = std::chrono::steady_clock::now();
-    if (csv) csv->add(d.sites, batch.data(), batch.size());
-    if (gds) draw_pieces(*gds, out.layers, batch.data(), batch.size(), r.drawn);
+    if (csv) csv->add(d.sites, b.pieces.data(), b.pieces.size());
+    if (gds) draw_pieces(*gds, out.layers, b.pieces.data(), b.pieces.size(), r.drawn);
     d.seconds_csv += since(t);
     if (stretches) {
       t = std::chrono::steady_clock::now();
-      starts.push_back(batch.size());
-      for (std::size_t g = 0; g + 1 < starts.size(); ++g)
-        stretches->pair(batch.data() + starts[g], starts[g + 1] - starts[g]);
+      b.starts.push_back(b.pieces.size());
+      for (std::size_t g = 0; g + 1 < b.starts.size(); ++g)
+        stretches->pair(b.pieces.data() + b.starts[g], b.starts[g + 1] - b.starts[g]);
       t_stretches += since(t);
     }
-    batch.clear();
-    starts.clear();
-  };
+  });
+  Batch batch;
   t0 = std::chrono::steady_clock::now();
   std::uint64_t raw = 0;
   for (const Runs::Run& run : runs.runs()) raw += run.end - run.first;
@@ -214,16 +302,17 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
   merge(runs, [&](std::vector<Piece>& group) {
     meter.step(group.size());
     join_pair(group);
-    starts.push_back(batch.size());
+    batch.starts.push_back(batch.pieces.size());
     for (Piece p : group) {
       // Again after the join: a piece's kind is decided at its own midpoint, as the in-memory
       // stage decides it on the joined pieces (the tiles' kinds served the point stretches).
       p.kind = classify(d.sites, p);
-      batch.push_back(p);
+      batch.pieces.push_back(p);
     }
-    if (batch.size() >= (std::size_t(1) << 16)) flush();
+    if (batch.pieces.size() >= (std::size_t(1) << 16)) behind.give(batch);
   });
-  flush();
+  behind.give(batch);
+  behind.finish();
 
   if (checker) {
     if (opt.progress) opt.progress("checking the diagram", 0, 0);

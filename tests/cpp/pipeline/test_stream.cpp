@@ -7,6 +7,8 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "linf/io/csv.hpp"
 #include "linf/diagram/diagram.hpp"
@@ -186,4 +188,34 @@ TEST(Stream, AFailedCheckLeavesNoFiles) {
   EXPECT_THROW(stream_voronoi(block(4, linf::testing::Style::AnyAngle, 2, 2), o, so), DiagramError);
   EXPECT_FALSE(exists(so.csv));
   EXPECT_FALSE(exists(so.gds));
+}
+
+// After the tiles, the checker, the writers and the stretches take the joined pieces on a
+// thread of their own (with more than one thread): an error there must reach the caller as
+// it does on one thread, not end the process or leave it waiting. Here the stretches' filter
+// fails once the pieces are being joined.
+TEST(Stream, AnErrorWhileThePiecesAreTakenReachesTheCaller) {
+  for (int threads : {1, 2}) {
+    bool joining = false;
+    std::size_t asked = 0;
+    DiagramOptions o;
+    o.build.threads = threads;
+    o.progress = [&](const char* stage, std::size_t, std::size_t) {
+      if (std::string(stage).find("joining") == 0) joining = true;
+    };
+    StreamOutputs so;
+    so.csv = tmp("taken.csv");
+    so.keep = [&](const Sites&, std::int32_t, std::int32_t, PieceKind) {
+      if (joining && ++asked > 100) throw std::runtime_error("the filter failed");
+      return true;
+    };
+    try {
+      stream_voronoi(block(4, linf::testing::Style::Rectilinear, 2, 2), o, so);
+      ADD_FAILURE() << "no error on " << threads << " thread(s)";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ("the filter failed", e.what()) << threads << " thread(s)";
+    }
+    EXPECT_GT(asked, 100u) << threads << " thread(s)";
+    std::remove(so.csv.c_str());
+  }
 }
