@@ -160,14 +160,18 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
     note_border(part, o);
     sink(part, frame);
   };
-  // The sweep's tiles come prepared (on the threads that swept them).
-  const PreparedSink swept_prepared = [&](std::vector<Piece>& part, const Box& frame, std::any& prepared) {
-    note_border(part, o);
-    prepared_sink(part, frame, prepared);
-  };
+  if (sweep && !runner) {
+    // The far field is swept beside the tiles, from its own walk along the inner box's border
+    // (tiles.hpp): nothing of the tiles is waited for, and it costs no thread time at the end.
+    std::vector<Piece> far;
+    sweep_tiled(sites.sites, origin, inner, opt, tau, st, prepare, prepared_sink, progress, &clip, &far);
+    if (progress) progress("building the far field", 0, 0);
+    if (stats) *stats = st;
+    sink(far, shifted(inner, o.x, o.y));
+    return;
+  }
   // The tiles here or by the runner (same parts, same order); the far field is built here.
   if (runner) build_tiled_jobs(sites.sites, origin, inner, opt, tau, st, sweep ? swept_sink : inner_sink, runner, progress);
-  else if (sweep) sweep_tiled(sites.sites, origin, inner, opt, tau, st, prepare, swept_prepared, progress);
   else build_tiled(sites.sites, origin, inner, opt, tau, st, inner_sink, progress);
   // The border's owners, and the sites L-inf-tied with them there (far_field.hpp).
   std::vector<int> near = far_field_sites(sites.sites, origin, inner, marks);

@@ -199,7 +199,7 @@ class Plan {
         nt(std::size_t(1) << T_), per(side_tasks()), ntiles(nt / per), tasks(grid_boxes(root, T_)),
         level_(sweep ? fine_level() : T_ + 1),  // buckets finer than tasks: tighter halos
         grid_(sites, root, level_, origin),
-        scratch_(worker_count(sweep ? ntiles * ntiles : per * per, opt.threads)) {
+        scratch_(worker_count(sweep ? ntiles * ntiles + 1 : per * per, opt.threads)) {  // + 1: the far field
     if (sweep) return;
     local_.resize(sites.size());
     std::fill(local_.begin(), local_.end(), -1);
@@ -221,11 +221,8 @@ class Plan {
     return f;
   }
   // The same frame in layout coordinates, where the sweep works.
-  Box layout_frame(std::size_t tj, std::size_t ti) const {
-    const Box f = frame(tj, ti);
-    const double ox = double(origin_.x), oy = double(origin_.y);
-    return {f.x1 + ox, f.y1 + oy, f.x2 + ox, f.y2 + oy};
-  }
+  Box layout_frame(std::size_t tj, std::size_t ti) const { return in_layout(frame(tj, ti)); }
+  Box layout_root() const { return in_layout(root_); }
   // The tile's sites for the sweep (safe on several threads, each with its own `worker`). A
   // site that owns a point p of the frame F and does not meet F is an L-inf nearest site, tied
   // or not, at the point q where the segment from p to the site's nearest point leaves F (as in
@@ -239,8 +236,23 @@ class Plan {
   // Every segment's end sites are added (the sweep takes a segment with them). Tighter than
   // the tasks' halos, which take a task's whole least upper bound of f around it.
   std::vector<int> sweep_sites(std::size_t tj, std::size_t ti, unsigned worker) {
+    return walked(frame(tj, ti), worker, true);
+  }
+  // The sites L-inf nearest, tied or not, at a point of the root's border, and every segment's
+  // end sites: the only sites that own a point outside the root (far_field.hpp), found by the
+  // same walk, so that the far field needs nothing of the tiles and is swept beside them.
+  std::vector<int> far_field_sites(unsigned worker) { return walked(root_, worker, false); }
+  // The sweep's grid: about 8 sites a bucket, for sweep_sites' many small queries.
+  int fine_level() const {
+    int level = T_ + 1;
+    while (level < 12 && (std::size_t(1) << (2 * level)) * 8 < sites_.size()) ++level;
+    return level;
+  }
+
+ private:
+  // The border walk of sweep_sites over F; with `inside`, also the sites meeting F.
+  std::vector<int> walked(const Box& F, unsigned worker, bool inside) {
     Scratch& sc = scratch_[worker];
-    const Box F = frame(tj, ti);
     std::vector<int> ids, h;
     // The steps' catches overlap (a step is a 32nd of the radius it searches): each site is
     // taken once, and the catches are left unsorted.
@@ -249,8 +261,10 @@ class Plan {
     auto take = [&](int t) {
       if (sc.taken[t] != sc.taken_stamp) sc.taken[t] = sc.taken_stamp, ids.push_back(t);
     };
-    grid_.near(F, 0, h, sc.seen, sc.stamp, false);
-    for (int t : h) take(t);
+    if (inside) {
+      grid_.near(F, 0, h, sc.seen, sc.stamp, false);
+      for (int t : h) take(t);
+    }
     const double side = std::max(F.x2 - F.x1, F.y2 - F.y1);
     const double floor_step = std::max(1.0, side / 2048);  // at most 4 x 2048 samples a tile
     for (int e = 0; e < 4; ++e) {
@@ -275,13 +289,8 @@ class Plan {
     std::sort(ids.begin(), ids.end());
     return ids;
   }
-  // The sweep's grid: about 8 sites a bucket, for sweep_sites' many small queries.
-  int fine_level() const {
-    int level = T_ + 1;
-    while (level < 12 && (std::size_t(1) << (2 * level)) * 8 < sites_.size()) ++level;
-    return level;
-  }
 
+ public:
   // The tile's sites (global ids, ascending) and each task's halo in local ids (into them).
   std::vector<int> gather_tile(std::size_t tj, std::size_t ti, std::vector<std::vector<int>>& halo) {
     halo.resize(per * per);
@@ -302,6 +311,10 @@ class Plan {
   }
 
  private:
+  Box in_layout(const Box& f) const {
+    const double ox = double(origin_.x), oy = double(origin_.y);
+    return {f.x1 + ox, f.y1 + oy, f.x2 + ox, f.y2 + oy};
+  }
   // Tasks along a tile's side: 2^(T - Lt), Lt the tile level.
   std::size_t side_tasks() const {
     int Lt = 0;  // tile level: the coarsest whose boxes are no larger than the tile size
@@ -434,10 +447,22 @@ void build_tiled(const SiteList& sites, const Point& origin, const Box& root, co
 }
 
 void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt, double tau,
-                 BuildStats& st, const PartPrepare& prepare, const PreparedSink& sink, const ProgressFn& progress) {
+                 BuildStats& st, const PartPrepare& prepare, const PreparedSink& sink, const ProgressFn& progress,
+                 const Box* clip, std::vector<Piece>* far) {
   Plan plan(sites, origin, root, opt, tau, true);
   const std::size_t count = plan.ntiles * plan.ntiles;
   const unsigned nw = worker_count(count, opt.threads);
+  // The far field: job 0, taken first, as it is one of the longest; the tiles are jobs 1 to count.
+  const std::size_t first = far ? 1 : 0;
+  auto far_field = [&](unsigned w) {
+    std::vector<int> ids = plan.far_field_sites(w);
+    if (ids.size() < 2) {  // one site owns the whole border: let the sweep decide among all
+      ids.resize(sites.size());
+      for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = int(i);
+    }
+    const Box hole = plan.layout_root();
+    *far = sweep_part(sites, ids, *clip, &hole);
+  };
   ProgressMeter meter(progress, "building the diagram", count);
   // Each worker takes the next tile, gathers its sites and sweeps it; whoever finds the next
   // tile in order ready hands it and those after it to the sink, one thread at a time. At most
@@ -455,7 +480,19 @@ void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, co
   std::condition_variable cv;
   std::size_t delivered = 0;
   bool delivering = false, stop = false;
-  parallel_for(count, opt.threads, [&](unsigned w, std::size_t i) {
+  parallel_for(count + first, opt.threads, [&](unsigned w, std::size_t job) {
+    if (job < first) {
+      try {
+        far_field(w);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(m);
+        stop = true;
+        cv.notify_all();
+        throw;
+      }
+      return;
+    }
+    const std::size_t i = job - first;
     try {
       {
         std::unique_lock<std::mutex> lock(m);

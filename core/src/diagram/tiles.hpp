@@ -33,8 +33,11 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
 // many tiles swept side by side as there are threads, each prepared (`prepare`, if set) on the
 // thread that swept it, handed to `sink` one at a time and in order. Pieces and frames in layout
 // coordinates (the frames, dyadic, shift exactly), so the sweep's vertices reach the sink as it
-// computed them.
+// computed them. With `far`, also the far field beside the tiles: the pieces within `clip` and
+// outside `root` (far_field.hpp), from the sites nearest at a point of root's border, found by
+// the walk that finds a tile's halo; left in *far for the caller to hand over last.
 void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt, double tau,
-                 BuildStats& st, const PartPrepare& prepare, const PreparedSink& sink, const ProgressFn& progress = {});
+                 BuildStats& st, const PartPrepare& prepare, const PreparedSink& sink, const ProgressFn& progress = {},
+                 const Box* clip = nullptr, std::vector<Piece>* far = nullptr);
 
 }  // namespace linf::detail
