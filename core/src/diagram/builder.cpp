@@ -223,7 +223,7 @@ std::vector<Piece> build_pieces(const Sites& sites, const Box& clip, const Build
   build_parts(sites, clip, opt, stats,
               [&](std::vector<Piece>& part, const Box&) { raw.insert(raw.end(), part.begin(), part.end()); },
               TileRunner{}, progress);
-  join_pieces(raw);
+  join_pieces(raw, opt.threads);
   return raw;
 }
 

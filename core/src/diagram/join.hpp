@@ -4,10 +4,13 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <utility>
 #include <tuple>
 #include <vector>
 
 #include "linf/geometry/piece.hpp"
+#include "util/parallel.hpp"
 
 // Internal linkage, as subdivision.hpp (see there).
 namespace linf::detail {
@@ -105,22 +108,46 @@ inline void join_run(const Piece* first, const Piece* last, std::vector<char>& u
   std::sort(joined.begin(), joined.end(), piece_order);
 }
 
-// Joins pieces of the same two owners that continue each other in a straight line, in place:
-// on a large layer the raw pieces are the builder's largest buffer, and a copy would double it.
-// Joining parts first (a tile's) and then their union gives the same maximal runs.
-inline void join_pieces(std::vector<Piece>& in) {
-  std::sort(in.begin(), in.end(), piece_order);
+// Joins pieces of the same two owners that continue each other in a straight line, in place
+// over [first, last), and returns how many there are then, from first on: on a large layer the
+// raw pieces are the builder's largest buffer, and a copy would double it. Joining parts first
+// (a tile's) and then their union gives the same maximal runs.
+inline std::size_t join_range(Piece* first, Piece* last) {
+  std::sort(first, last, piece_order);
+  const std::size_t n = std::size_t(last - first);
   std::size_t out = 0;  // pieces written so far; always <= g0, so writing never overtakes reading
   std::vector<char> used;
   std::vector<Piece> joined;
-  for (std::size_t g0 = 0; g0 < in.size();) {
+  for (std::size_t g0 = 0; g0 < n;) {
     std::size_t g1 = g0;
-    while (g1 < in.size() && in[g1].a == in[g0].a && in[g1].b == in[g0].b) ++g1;
-    join_run(in.data() + g0, in.data() + g1, used, joined);
-    for (const Piece& p : joined) in[out++] = p;
+    while (g1 < n && first[g1].a == first[g0].a && first[g1].b == first[g0].b) ++g1;
+    join_run(first + g0, first + g1, used, joined);
+    for (const Piece& p : joined) first[out++] = p;
     g0 = g1;
   }
-  in.resize(out);
+  return out;
+}
+
+// join_range over all of `in`. With more than one thread, the owner pairs below a pivot pair
+// (the median of a sample) and those from it on are sorted and joined side by side, and the
+// second half's pieces moved down after the first's: the same pieces in the same order, still
+// in place (a layer's final sort had been the tiles' one long wait on a single core).
+inline void join_pieces(std::vector<Piece>& in, int threads = 1) {
+  Piece* const begin = in.data();
+  Piece* const end = begin + in.size();
+  if (worker_count(2, threads) < 2 || in.size() < (std::size_t(1) << 16)) {
+    in.resize(join_range(begin, end));
+    return;
+  }
+  std::vector<std::pair<std::int32_t, std::int32_t>> sample;
+  for (std::size_t i = 0; i < in.size(); i += in.size() / 1024) sample.push_back({in[i].a, in[i].b});
+  std::nth_element(sample.begin(), sample.begin() + std::ptrdiff_t(sample.size() / 2), sample.end());
+  const auto pivot = sample[sample.size() / 2];
+  Piece* const mid = std::partition(begin, end, [&](const Piece& p) { return std::make_pair(p.a, p.b) < pivot; });
+  std::size_t kept[2];
+  parallel_for(2, threads, [&](unsigned, std::size_t k) { kept[k] = k == 0 ? join_range(begin, mid) : join_range(mid, end); });
+  std::move(mid, mid + kept[1], begin + kept[0]);
+  in.resize(kept[0] + kept[1]);
 }
 
 }  // namespace

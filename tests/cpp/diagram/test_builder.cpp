@@ -6,12 +6,14 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <random>
 #include <utility>
 #include <vector>
 
 #include "linf/diagram/builder.hpp"
 #include "linf/diagram/diagram.hpp"
 #include "linf/geometry/sites.hpp"
+#include "diagram/join.hpp"
 #include "layouts.hpp"
 
 using namespace linf;
@@ -373,5 +375,43 @@ TEST(Builder, JoinKeepsAPieceWhoseEndHasACrumbOfRounding) {
     EXPECT_NEAR(std::fabs(v[0].p.y - v[0].q.y), 1.5, 1e-7) << "order " << order;
     EXPECT_NEAR(v[0].p.x, -245, 1e-7);
     EXPECT_NEAR(v[0].q.x, -245, 1e-7);
+  }
+}
+
+// build_pieces joins the tiles' pieces on two threads, split at a pivot owner pair: the same
+// pieces in the same order as on one. Pairs of up to 64 pieces, in runs along a line (that join),
+// copies and overlaps, in any order: a pair cut at the pivot would stay in two runs.
+TEST(Builder, JoinOnTwoThreadsAsOnOne) {
+  std::mt19937_64 rng(11);
+  std::vector<Piece> raw;
+  for (std::int32_t pair = 0; raw.size() < 200000; ++pair) {
+    const std::int32_t a = pair / 7, b = a + 1 + pair % 7;
+    const double y = double(rng() % 1000), step = 1 + double(rng() % 4);
+    const int n = 1 + int(rng() % 64);
+    for (int k = 0; k < n; ++k) {
+      Piece p;
+      p.a = a, p.b = b;
+      const double x = double(rng() % 80) * step;
+      p.p = {x, y + (rng() % 16 == 0 ? 1 : 0)};
+      p.q = {x + step * double(1 + rng() % 3), y};
+      p.d1 = 0.5 * p.p.x + p.p.y, p.d2 = 0.5 * p.q.x + p.q.y;  // a clearance is a function of the place
+      raw.push_back(p);
+    }
+  }
+  std::shuffle(raw.begin(), raw.end(), rng);
+  std::vector<Piece> one = raw, two = raw;
+  detail::join_pieces(one, 1);
+  detail::join_pieces(two, 2);
+  ASSERT_LT(one.size(), raw.size() / 2);  // most pieces joined
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    ASSERT_EQ(one[i].a, two[i].a) << i;
+    ASSERT_EQ(one[i].b, two[i].b) << i;
+    ASSERT_EQ(one[i].p.x, two[i].p.x) << i;
+    ASSERT_EQ(one[i].p.y, two[i].p.y) << i;
+    ASSERT_EQ(one[i].q.x, two[i].q.x) << i;
+    ASSERT_EQ(one[i].q.y, two[i].q.y) << i;
+    ASSERT_EQ(one[i].d1, two[i].d1) << i;
+    ASSERT_EQ(one[i].d2, two[i].d2) << i;
   }
 }
