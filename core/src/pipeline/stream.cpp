@@ -17,6 +17,7 @@
 #include <mutex>
 #include <queue>
 #include <stdexcept>
+#include <system_error>
 #include <thread>
 #include <utility>
 
@@ -146,7 +147,11 @@ struct Batch {
 class Behind {
  public:
   Behind(bool threaded, std::function<void(Batch&)> work) : work_(std::move(work)) {
-    if (threaded) thread_ = std::thread([this] { run(); });
+    try {
+      if (threaded) thread_ = std::thread([this] { run(); });
+    } catch (const std::system_error&) {
+      // No thread to be had (EAGAIN): the batches are taken on the caller's.
+    }
   }
   ~Behind() { stop(); }
   Behind(const Behind&) = delete;
