@@ -210,20 +210,23 @@ void in_blocks(std::size_t n, int threads, const std::function<void(std::size_t)
 std::vector<char> redundant(const Sites& s, const Stretches& all, const std::vector<char>& ok, int threads) {
   auto vertices = [&](const Stretch& st) { return int(s.sites[st.a].is_point()) + int(s.sites[st.b].is_point()); };
   auto rank = [&](const Stretch& st) { return (st.path.size() == 1 ? 4 : 0) + vertices(st); };
-  // (a, b, stretch) sorted: a flat index, where a map would cost more than the stretches.
+  // The measurable stretches by first owner (a counting sort): a lookup scans a site's few
+  // pairs. A flat index, where a map would cost more than the stretches.
   struct ByPair {
-    std::int32_t a, b;
+    std::int32_t b;
     std::uint32_t i;
-    bool operator<(const ByPair& o) const { return std::tie(a, b, i) < std::tie(o.a, o.b, o.i); }
   };
-  Paged<ByPair> by_pair;
-  for (std::size_t i = 0; i < all.size(); ++i)
-    if (ok[i]) by_pair.push_back({all[i].a, all[i].b, std::uint32_t(i)});
-  std::sort(by_pair.begin(), by_pair.end());
-  // Where each first owner's entries begin: a lookup scans a site's few pairs, not the index.
   std::vector<std::uint32_t> from(s.sites.size() + 1, 0);
-  for (const ByPair& e : by_pair) ++from[std::size_t(e.a) + 1];
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (ok[i]) ++from[std::size_t(all[i].a) + 1];
   for (std::size_t k = 1; k < from.size(); ++k) from[k] += from[k - 1];
+  Paged<ByPair> by_pair;
+  by_pair.resize(from.back());
+  {
+    std::vector<std::uint32_t> next(from.begin(), from.end() - 1);
+    for (std::size_t i = 0; i < all.size(); ++i)
+      if (ok[i]) by_pair[next[std::size_t(all[i].a)]++] = {all[i].b, std::uint32_t(i)};
+  }
   auto related = [&](std::int32_t x) {  // an array, not a vector: called a few times a stretch
     const Site& t = s.sites[x];
     return std::array<std::int32_t, 3>{x, t.end0, t.end1};
@@ -389,15 +392,38 @@ int context(GaugeType t) {
 // Scores are compared on a 1e-6 DBU grid so that rounding never reorders equal widths.
 long long grid(double v) { return round_half_away(v * 1e6); }
 
-// Score, then type, longer tiebreak, place, sites. Key by key, each computed only when the
-// ones before tie: the sort of a layer's gauges makes tens of millions of comparisons.
+// Score, then type, longer tiebreak, place, sites; then stretch and neighbour, so that no two
+// gauges tie and the order does not depend on how the sort proceeds. Key by key, each computed
+// only when the ones before tie: the sort of a layer's gauges makes tens of millions of
+// comparisons.
 bool before(const Gauge& x, const Gauge& y) {
   if (const long long s = grid(x.score), t = grid(y.score); s != t) return s < t;
   if (const int s = context(x.type), t = context(y.type); s != t) return s < t;
   if (const long long s = grid(x.tiebreak), t = grid(y.tiebreak); s != t) return s > t;
   if (const long long s = grid(x.at.x), t = grid(y.at.x); s != t) return s < t;
   if (const long long s = grid(x.at.y), t = grid(y.at.y); s != t) return s < t;
-  return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
+  return std::tie(x.a, x.b, x.stretch, x.neighbour) < std::tie(y.a, y.b, y.stretch, y.neighbour);
+}
+
+// The gauges in rank order (`before`). With more than one thread, those before a pivot gauge (a
+// sample's median) and the rest are sorted side by side: the order is total, so the result is
+// the one sort's.
+void rank_gauges(Paged<Gauge>& gauges, int threads) {
+  Gauge* const first = gauges.begin();
+  Gauge* const last = gauges.end();
+  if (detail::worker_count(2, threads) < 2 || gauges.size() < (std::size_t(1) << 14)) {
+    std::sort(first, last, before);
+    return;
+  }
+  std::vector<Gauge> sample;
+  for (std::size_t i = 0; i < gauges.size(); i += gauges.size() / 1024) sample.push_back(gauges[i]);
+  std::nth_element(sample.begin(), sample.begin() + std::ptrdiff_t(sample.size() / 2), sample.end(), before);
+  const Gauge pivot = sample[sample.size() / 2];
+  Gauge* const mid = std::partition(first, last, [&](const Gauge& g) { return before(g, pivot); });
+  detail::parallel_for(2, threads, [&](unsigned, std::size_t k) {
+    if (k == 0) std::sort(first, mid, before);
+    else std::sort(mid, last, before);
+  });
 }
 
 StretchFilter measurable_pairs(const Sites& s) {
@@ -465,10 +491,16 @@ Gauges gauges_of(const Sites& sites, Stretches stretches, const GaugeOptions& op
           context_gauges(sites, r.stretches, i, external_at, opt, out);
       }
     });
-    for (const std::vector<Gauge>& out : placed)
-      for (const Gauge& g : out) r.gauges.push_back(g);
+    // Appended in order, each block's gauges copied to their place on the threads: on a full
+    // layer the gauges are a file's pages, each faulted in as it is first written.
+    std::vector<std::size_t> at(placed.size() + 1, r.gauges.size());
+    for (std::size_t k = 0; k < placed.size(); ++k) at[k + 1] = at[k] + placed[k].size();
+    r.gauges.grow_unwritten(at.back());
+    detail::parallel_for(placed.size(), opt.threads, [&](unsigned, std::size_t k) {
+      std::copy(placed[k].begin(), placed[k].end(), r.gauges.begin() + std::ptrdiff_t(at[k]));
+    });
   }
-  std::sort(r.gauges.begin(), r.gauges.end(), before);
+  rank_gauges(r.gauges, opt.threads);
   for (const Gauge& g : r.gauges) r.top_score = std::max(r.top_score, g.score);
   return r;
 }

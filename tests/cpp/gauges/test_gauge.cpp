@@ -288,7 +288,8 @@ TEST(Gauges, EveryLineOnAManhattanLayoutIsHorizontalOrVertical) {
 }
 
 TEST(Gauges, TheSameGaugesOnEveryNumberOfThreads) {
-  // Enough stretches for several blocks of 4,096 (the gauges are placed in blocks on the threads).
+  // Enough stretches for several blocks of 4,096 (the gauges are placed in blocks on the threads,
+  // copied into place there, and ranked in two halves).
   const auto layout = linf::testing::block(7, linf::testing::Style::Rectilinear, 20, 20);
   const Result r = voronoi_of_polygons(layout);
   auto placed = [&](int threads) {
@@ -298,6 +299,7 @@ TEST(Gauges, TheSameGaugesOnEveryNumberOfThreads) {
   };
   const Gauges one = placed(1);
   ASSERT_GT(one.stretches.size(), 3u * 4096u);
+  ASSERT_GT(one.gauges.size(), 1u << 14);  // ranked in two halves side by side on 2 and 3 threads
   for (int threads : {2, 3}) {
     const Gauges g = placed(threads);
     ASSERT_EQ(g.gauges.size(), one.gauges.size()) << threads << " threads";

@@ -86,6 +86,15 @@ class Paged {
     if (n_ == room_) make_room(n_ + 1);
     p_[n_++] = v;
   }
+  // Grows to n values and leaves the new ones for the caller to write, every one of them before
+  // any is read: several threads may then write parts at once, and fault their pages in side by
+  // side (resize() would touch them all first, on one thread).
+  void grow_unwritten(std::size_t n) {
+    if (n <= n_) return;
+    if (n > cap_) grow(n);
+    if (n > room_) make_room(n);
+    n_ = n;
+  }
   // Shrinking gives the file's room and pages past the new size back; growing value-initialises.
   void resize(std::size_t n) {
     if (n > cap_) grow(n);
