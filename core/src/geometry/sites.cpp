@@ -215,6 +215,7 @@ std::vector<Polygon> merge_polygons(const std::vector<Polygon>& in, std::size_t 
 
 Sites sites_of_polygons(const FlatPolygons& merged) {
   Sites s;
+  s.sites.reserve(2 * merged.n_points);  // at once: growing by doubling copies and remaps them
   std::int32_t pi = -1, ri = 0;
   std::size_t at = 0;
   for (std::size_t k = 0; k < merged.n_rings; ++k, ++ri) {
