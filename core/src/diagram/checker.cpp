@@ -7,6 +7,8 @@
 #include <memory>
 #include <random>
 #include <sstream>
+#include <string>
+#include <utility>
 
 #include "linf/util/box_tree.hpp"
 #include "linf/geometry/distance.hpp"
@@ -170,7 +172,23 @@ struct Checker::Impl {
   // a sorted array does it in a binary search where a tree cost more than the test).
   std::vector<std::pair<double, std::int32_t>> by_x;
   double widest = 0;
-  std::vector<char> crossed;
+  // The pieces crossing each pair: how many (up to 2: one is enough to judge), and the
+  // owners of one of them (the least pair, so that batches and threads agree).
+  struct Crossing {
+    std::uint8_t n = 0;
+    std::int32_t a = -1, b = -1;
+    void add(std::int32_t u, std::int32_t w) {
+      if (u > w) std::swap(u, w);
+      if (n == 0 || std::make_pair(u, w) < std::make_pair(a, b)) a = u, b = w;
+      if (n < 2) ++n;
+    }
+    void add(const Crossing& c) {
+      if (c.n == 0) return;
+      add(c.a, c.b);
+      if (c.n > 1) n = 2;
+    }
+  };
+  std::vector<Crossing> crossed;
 
   Impl(const SiteList& s, const Box& c, const CheckOptions& o) : S(s), clip(c), opt(o), sites(s) {}
 
@@ -232,7 +250,7 @@ struct Checker::Impl {
       widest = std::max(widest, std::fabs(x.p.x - x.q.x));
     }
     std::sort(by_x.begin(), by_x.end());
-    crossed.assign(separated.size(), 0);
+    crossed.assign(separated.size(), Crossing{});
   }
 
   // Every piece sampled at its ends and inside, and the pairs it crosses marked. Chunks of
@@ -242,7 +260,7 @@ struct Checker::Impl {
     const int k = std::clamp(opt.samples_per_piece, 2, kMostSamples);
     const std::size_t chunk = 4096, nchunks = (n + chunk - 1) / chunk;
     std::vector<CheckReport> part(nchunks);
-    std::vector<std::vector<char>> marks(detail::worker_count(nchunks, opt.threads), std::vector<char>(separated.size(), 0));
+    std::vector<std::vector<Crossing>> marks(detail::worker_count(nchunks, opt.threads), std::vector<Crossing>(separated.size()));
     auto sample = [&](unsigned w, std::size_t c) {
       CheckReport& r = part[c];
       for (std::size_t pi = c * chunk; pi < std::min(n, (c + 1) * chunk); ++pi) {
@@ -296,7 +314,7 @@ struct Checker::Impl {
         for (; it != by_x.end() && it->first <= x2; ++it) {
           const Pair& x = separated[std::size_t(it->second)];
           if (std::max(x.p.y, x.q.y) < y1 || std::min(x.p.y, x.q.y) > y2) continue;
-          if (segments_cross(x.p, x.q, pc.p, pc.q)) marks[w][std::size_t(it->second)] = 1;
+          if (segments_cross(x.p, x.q, pc.p, pc.q)) marks[w][std::size_t(it->second)].add(pc.a, pc.b);
         }
       }
     };
@@ -311,19 +329,20 @@ struct Checker::Impl {
       for (const std::string& m : r.messages)
         if (rep.messages.size() < 20) rep.messages.push_back(m);
     }
-    for (const std::vector<char>& m : marks)
-      for (std::size_t i = 0; i < m.size(); ++i) crossed[i] |= m[i];
+    for (const std::vector<Crossing>& m : marks)
+      for (std::size_t i = 0; i < m.size(); ++i) crossed[i].add(m[i]);
   }
 
   CheckReport finish() {
     for (std::size_t i = 0; i < separated.size(); ++i) {
-      if (crossed[i]) continue;
+      const Crossing& c = crossed[i];
       const Pair& x = separated[i];
+      if (c.n == 2 || (c.n == 1 && std::min(x.sp, x.sq) == c.a && std::max(x.sp, x.sq) == c.b)) continue;
       std::ostringstream m;
       m.precision(12);
-      m << "no piece between (" << x.p.x << "," << x.p.y << ") nearest " << x.sp << " and (" << x.q.x << ","
-        << x.q.y << ") nearest " << x.sq;
-      fail(rep, rep.missing_edge_errors, m.str());
+      m << (c.n == 0 ? "no piece" : "only a piece of " + std::to_string(c.a) + "," + std::to_string(c.b)) << " between ("
+        << x.p.x << "," << x.p.y << ") nearest " << x.sp << " and (" << x.q.x << "," << x.q.y << ") nearest " << x.sq;
+      fail(rep, c.n == 0 ? rep.missing_edge_errors : rep.wrong_owner_errors, m.str());
     }
     return rep;
   }

@@ -44,9 +44,9 @@ struct Model {
     }
     if (slanted) partners = zero_width_partners(S);
   }
-  // zero_width.hpp: each segment's partner at its ends where the point there has no width
-  // between them (empty on a Manhattan layer, where there is none to find).
-  std::vector<std::array<std::int32_t, 2>> partners;
+  // zero_width.hpp: each segment's partner at its ends, on each ray of no width of the point
+  // there (empty on a Manhattan layer, where there is none to find).
+  std::vector<Partners> partners;
 
   // The allowance of a decision at p: tau, the same in every tile, and rounding at p's scale.
   double tol(const Vec2& p) const { return tau + 1e-13 * (std::fabs(p.x) + std::fabs(p.y)); }

@@ -674,16 +674,12 @@ void collect(const Model& m, const std::vector<Builder>& workers, BuildStats& st
   raw.reserve(n);
   // A point of no width between two segments (zero_width.hpp): its pieces with the lower one
   // are the two segments' (as the sweep reports them), those with the other the same line again.
-  auto partner = [&](int seg, int pt) -> int {
-    const std::array<std::int32_t, 2>& o = m.partners[seg];
-    if (o[0] >= 0 && m.S[seg].a == m.S[pt].a) return o[0];
-    if (o[1] >= 0 && m.S[seg].b == m.S[pt].a) return o[1];
-    return -1;
-  };
   for (const Builder& w : workers) {
     for (Piece p : w.out) {
       if (!m.partners.empty() && m.S[p.a].is_point() != m.S[p.b].is_point()) {
-        const int pt = m.S[p.a].is_point() ? p.a : p.b, seg = pt == p.a ? p.b : p.a, other = partner(seg, pt);
+        const int pt = m.S[p.a].is_point() ? p.a : p.b, seg = pt == p.a ? p.b : p.a;
+        const int end = end_at(m.S, seg, pt);
+        const int other = end < 0 ? -1 : partner_at(m.partners, m.S, seg, pt, ray_of(m.S[seg], end, p.p, p.q));
         if (other >= 0) {
           if (other < seg) continue;
           p.a = seg, p.b = other;

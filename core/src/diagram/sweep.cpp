@@ -275,19 +275,27 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   if (!any_steep) construct<std::int64_t>(S, at_an_end, cuts, topo);
   else if (normal <= (std::int64_t(1) << 24)) construct<__int128>(S, at_an_end, cuts, topo);
   else construct<sweep::Int256>(S, at_an_end, cuts, topo);
-  // Two segments in line that end at one point, nothing else beside them there on a side (a
-  // polygon pinched at a slanted corner): the point's region on that side is the ray
-  // perpendicular to them, of no width. The rule gives the ray to the point; the subdivision
-  // (and the files) have the two segments meet along it. Its edges with either segment are
-  // those of the two segments (their bisector: that perpendicular).
-  const std::vector<std::array<std::int32_t, 2>> in_line = diagonal ? detail::zero_width_partners(S) : decltype(in_line){};
-  // The partner of seg at the place of point pt, if pt's region there has no width, or -1.
-  auto partner = [&](std::int32_t seg, std::int32_t pt) -> std::int32_t {
+  // Two segments that end at one point with one separator, on opposite sides of it (a polygon
+  // pinched at a slanted corner): the point's region there is a ray of that separator (or two),
+  // of no width. The rule gives the ray to the point; the subdivision (and the files) have the
+  // two segments beside the ray meet along it (zero_width.hpp). Its edges with either segment
+  // are those of the two segments (their bisector: that separator).
+  const std::vector<detail::Partners> in_line = diagonal ? detail::zero_width_partners(S) : std::vector<detail::Partners>{};
+  // The partner of seg at the place of point pt on the ray its edge (seg's half-edge hs, the
+  // point's gp) lies on, if pt's region there has no width, or -1. The ray: by the vertex
+  // farther from the place along it, or, where the edge has a vertex only at the place, by the
+  // way seg's half-edge runs from it.
+  auto partner = [&](std::int32_t seg, std::int32_t pt, const Topology::Half& hs, const Topology::Half& gp) -> std::int32_t {
     if (in_line.empty() || S[seg].is_point() || !S[pt].is_point()) return -1;
-    const std::array<std::int32_t, 2>& o = in_line[seg];
-    if (o[0] >= 0 && S[seg].a == S[pt].a) return o[0];
-    if (o[1] >= 0 && S[seg].b == S[pt].a) return o[1];
-    return -1;
+    const int end = detail::end_at(S, seg, pt);
+    if (end < 0) return -1;
+    const Vec2 none{double(S[pt].a.x), double(S[pt].a.y)};
+    const Vec2 from = hs.vertex0 >= 0 ? topo.vertices[std::size_t(hs.vertex0)] : none;
+    const Vec2 to = gp.vertex0 >= 0 ? topo.vertices[std::size_t(gp.vertex0)] : none;
+    int ray = detail::ray_of(S[seg], end, from, to);
+    if (ray < 0 && hs.vertex0 >= 0) ray = detail::outward_ray(S[seg], end);
+    else if (ray < 0 && gp.vertex0 >= 0) ray = 1 - detail::outward_ray(S[seg], end);
+    return detail::partner_at(in_line, S, seg, pt, ray);
   };
   auto cut_between = [&](std::int32_t u, std::int32_t w) {
     if (S[u].is_point() == S[w].is_point()) return false;
@@ -321,14 +329,14 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     if (!in_line.empty() && !S[hs].is_point() && !S[gs].is_point()) {
       // Two segments whose common end has no width between them: their edge is that end's
       // separator (the point stands for gs there), not a branch of their lines' bisector.
-      const std::array<std::int32_t, 2>& o = in_line[hs];
-      if (o[0] == gs) g_geo = topo.same_place[S[hs].end0];
-      else if (o[1] == gs) g_geo = topo.same_place[S[hs].end1];
+      const detail::Partners& o = in_line[hs];
+      if (o[0][0] == gs || o[0][1] == gs) g_geo = topo.same_place[S[hs].end0];
+      else if (o[1][0] == gs || o[1][1] == gs) g_geo = topo.same_place[S[hs].end1];
     }
     if (!in_line.empty()) {
       // A point's region of no width between two segments: its edge with the lower one is the
       // two segments' edge, its edge with the other the same line again (left out).
-      const std::int32_t ph = partner(gs, hs), pg = partner(hs, gs);
+      const std::int32_t ph = partner(gs, hs, g, h), pg = partner(hs, gs, h, g);
       if (ph >= 0) {
         if (ph < gs) continue;
         hs = ph;

@@ -116,3 +116,29 @@ TEST(Reproducers, CheckerRejectsAPiecePastACloserSite) {
   EXPECT_EQ(rep.closer_site_errors, 3u);
   EXPECT_FALSE(rep.ok());
 }
+
+// A piece on a line where a third site ties with its two owners, labelled with the third: the
+// sweep's fault at a point of no width with two rays (three segments at (0, 0) with one
+// separator, the diagonal x + y = 0: A to (-3, -3), B to (3, 3) in line with it, C to (3, 2)).
+// The ray above is A and B's edge; labelled A and C it is equidistant from its owners with no
+// site closer, so only the owners of the pairs it separates show it.
+TEST(Reproducers, CheckerRejectsAPieceLabelledWithATiedThirdSite) {
+  const Result r = voronoi_of_sites({}, {{{0, 0}, {-3, -3}}, {{0, 0}, {3, 3}}, {{0, 0}, {3, 2}}});
+  ASSERT_TRUE(r.check.ok());
+  const SiteList& S = r.diagram.sites.sites;
+  auto segment_to = [&](Point far) {
+    for (std::size_t i = 0; i < S.size(); ++i)
+      if (!S[i].is_point() && (S[i].a == far || S[i].b == far)) return std::int32_t(i);
+    return std::int32_t(-1);
+  };
+  const std::int32_t A = segment_to({-3, -3}), B = segment_to({3, 3}), C = segment_to({3, 2});
+  Diagram d = r.diagram;
+  int relabelled = 0;
+  for (Piece& p : d.pieces)
+    if (std::minmax(p.a, p.b) == std::minmax(A, B)) p.a = std::min(A, C), p.b = std::max(A, C), ++relabelled;
+  ASSERT_EQ(relabelled, 1);
+  const CheckReport rep = check_diagram(d);
+  EXPECT_EQ(rep.equidistance_errors + rep.clearance_errors + rep.closer_site_errors + rep.missing_edge_errors, 0u);
+  EXPECT_GT(rep.wrong_owner_errors, 0u);
+  EXPECT_FALSE(rep.ok());
+}

@@ -15,6 +15,7 @@
 #include "linf/diagram/checker.hpp"
 #include "linf/diagram/diagram.hpp"
 #include "linf/diagram/sweep.hpp"
+#include "linf/geometry/distance.hpp"
 #include "linf/geometry/sites.hpp"
 #include "layouts.hpp"
 #include "../fuzz/ends_check.hpp"
@@ -271,6 +272,70 @@ TEST(Sweep, ZeroWidthCornerOfTwoSteepEdgesAsTheSubdivision) {
     const bool corner = (a.is_point() && a.a == Point{526080, 30}) || (b.is_point() && b.a == Point{526080, 30});
     EXPECT_FALSE(corner && a.is_point() != b.is_point()) << p.a << "-" << p.b;
   }
+}
+
+TEST(Sweep, EachRayOfAPointOfNoWidthIsTheEdgeOfTheSegmentsBesideIt) {
+  // A fuzzer finding (near (0, 2^24)): segments A to (-3, -3) and B to (3, 3) in line at
+  // (0, 0), and C to (3, 2) below B. All three have the diagonal x + y = 0 as their separator
+  // there, so the point's region is both rays of it, of no width: the ray above lies between A
+  // and B, the one below between A and C. Both builders gave A a single partner at that end,
+  // and the sweep labelled the ray above A and C. Now: both builders, on C in several
+  // directions (some with no ray of no width) and the 8 symmetries of the square, near the
+  // origin and near 2^24; every piece from the point has, just beside it on each side, one of
+  // its owners strictly nearest (an independent brute force over the sites).
+  const std::vector<Point> cs{{3, 2}, {2, 3}, {18, 13}, {3, 1}, {3, 0}, {-1, -3}, {-3, 1}, {3, -1}};
+  for (const Coord shift : {Coord(0), Coord(16777218)})
+    for (int sym = 0; sym < 8; ++sym)
+      for (const Point& c : cs) {
+        auto map = [&](Point p) {
+          Coord x = p.x, y = p.y;
+          if (sym & 1) std::swap(x, y);
+          if (sym & 2) x = -x;
+          if (sym & 4) y = -y;
+          return Point{x - 244, y + shift};
+        };
+        const Point v = map({0, 0});
+        const std::vector<Segment> segs{{v, map({-3, -3})}, {v, map({3, 3})}, {v, map(c)}};
+        DiagramOptions o;
+        o.build.threads = 1;
+        o.check = false;  // the brute force below decides (the checker's pairs see this too)
+        const Result sub = voronoi_of_sites({}, segs, o);
+        o.sweep = true;
+        const Result sw = voronoi_of_sites({}, segs, o);
+        const std::string where = "C (" + std::to_string(c.x) + "," + std::to_string(c.y) + ") symmetry " +
+                                  std::to_string(sym) + " shift " + std::to_string(shift);
+        ASSERT_TRUE(sw.diagram.swept);
+        EXPECT_EQ(linf::fuzz::same_pieces(sub.diagram.pieces, sw.diagram.pieces, 1e-9), "") << where;
+        for (const Result* r : {&sub, &sw}) {
+          const SiteList& S = r->diagram.sites.sites;
+          int checked = 0;  // the pieces from the point between two segments
+          auto nearest = [&](double x, double y) {  // the owner by the rule: L-inf, then L1; -1 if still tied
+            double d = INFINITY, l1 = INFINITY;
+            for (const Site& t : S) d = std::min(d, dist_site(x, y, t));
+            std::int32_t best = -1;
+            bool tie = false;
+            for (std::size_t i = 0; i < S.size(); ++i) {
+              if (dist_site(x, y, S[i]) > d + 1e-9) continue;
+              const double li = dist_site_l1(x, y, S[i]);
+              if (li < l1 - 1e-9) best = std::int32_t(i), l1 = li, tie = false;
+              else if (li < l1 + 1e-9) tie = true;
+            }
+            return tie ? -1 : best;
+          };
+          for (const Piece& p : r->diagram.pieces) {
+            const bool from_v = (p.p.x == v.x && p.p.y == v.y) || (p.q.x == v.x && p.q.y == v.y);
+            if (!from_v || S[std::size_t(p.a)].is_point() || S[std::size_t(p.b)].is_point()) continue;
+            const double mx = (p.p.x + p.q.x) / 2, my = (p.p.y + p.q.y) / 2, len = std::hypot(p.q.x - p.p.x, p.q.y - p.p.y);
+            const double nx = -(p.q.y - p.p.y) / len * 1e-3, ny = (p.q.x - p.p.x) / len * 1e-3;
+            const std::int32_t left = nearest(mx + nx, my + ny), right = nearest(mx - nx, my - ny);
+            EXPECT_EQ(std::minmax(left, right), std::minmax(p.a, p.b))
+                << where << (r == &sw ? ": the sweep's " : ": the subdivision's ") << p.a << "-" << p.b << " from ("
+                << p.p.x << "," << p.p.y << ") to (" << p.q.x << "," << p.q.y << ")";
+            ++checked;
+          }
+          EXPECT_GE(checked, 2) << where;
+        }
+      }
 }
 
 namespace {

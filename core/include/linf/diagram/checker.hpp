@@ -7,7 +7,9 @@
 //    (that search is most of a full check's cost: docs/design.md, "The checker").
 // 2. Random pairs of nearby points whose owners differ (by the ownership rule, see
 //    builder.hpp; pairs too close to a near-tie are skipped): some piece crosses
-//    the segment between them (no Voronoi edge is missing).
+//    the segment between them (no Voronoi edge is missing), and where one piece alone crosses
+//    it, that piece's owners are the two points' (a piece along a line where a third site ties
+//    with both is not labelled with the third).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -37,10 +39,11 @@ constexpr int kSampledSearchEvery = 16;
 struct CheckReport {
   std::size_t sampled_points = 0, searched_pieces = 0, pairs_tested = 0, pairs_separated = 0;
   std::size_t equidistance_errors = 0, clearance_errors = 0, closer_site_errors = 0, missing_edge_errors = 0;
+  std::size_t wrong_owner_errors = 0;
   double worst_error = 0;             // DBU, over all distance tests
   std::vector<std::string> messages;  // the first few failures, with coordinates
   bool ok() const {
-    return equidistance_errors + clearance_errors + closer_site_errors + missing_edge_errors == 0;
+    return equidistance_errors + clearance_errors + closer_site_errors + missing_edge_errors + wrong_owner_errors == 0;
   }
 };
 
@@ -48,7 +51,7 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt = {});
 
 // The same check over pieces that come in batches (a layer too large to hold its pieces): the
 // pairs are drawn from the sites when it is made, each batch is sampled and marks the pairs its
-// pieces cross, finish() reports the pairs that no piece crossed. typical_clearance: how far
+// pieces cross, finish() reports the pairs that no piece crossed (or one piece of other owners). typical_clearance: how far
 // from a site half the pairs are drawn (check_diagram: the median clearance of the pieces).
 class Checker {
  public:
