@@ -129,7 +129,7 @@ inline std::size_t join_range(Piece* first, Piece* last) {
 }
 
 // join_range over all of `in`. With more than one thread, the owner pairs below a pivot pair
-// (the median of a sample) and those from it on are sorted and joined side by side, and the
+// (split_at_sampled_median) and those from it on are sorted and joined side by side, and the
 // second half's pieces moved down after the first's: the same pieces in the same order, still
 // in place (a layer's final sort had been the tiles' one long wait on a single core).
 inline void join_pieces(std::vector<Piece>& in, int threads = 1) {
@@ -139,11 +139,9 @@ inline void join_pieces(std::vector<Piece>& in, int threads = 1) {
     in.resize(join_range(begin, end));
     return;
   }
-  std::vector<std::pair<std::int32_t, std::int32_t>> sample;
-  for (std::size_t i = 0; i < in.size(); i += in.size() / 1024) sample.push_back({in[i].a, in[i].b});
-  std::nth_element(sample.begin(), sample.begin() + std::ptrdiff_t(sample.size() / 2), sample.end());
-  const auto pivot = sample[sample.size() / 2];
-  Piece* const mid = std::partition(begin, end, [&](const Piece& p) { return std::make_pair(p.a, p.b) < pivot; });
+  Piece* const mid = split_at_sampled_median(begin, end, [](const Piece& x, const Piece& y) {
+    return std::make_pair(x.a, x.b) < std::make_pair(y.a, y.b);
+  });
   std::size_t kept[2];
   parallel_for(2, threads, [&](unsigned, std::size_t k) { kept[k] = k == 0 ? join_range(begin, mid) : join_range(mid, end); });
   std::move(mid, mid + kept[1], begin + kept[0]);

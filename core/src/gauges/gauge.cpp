@@ -405,9 +405,9 @@ bool before(const Gauge& x, const Gauge& y) {
   return std::tie(x.a, x.b, x.stretch, x.neighbour) < std::tie(y.a, y.b, y.stretch, y.neighbour);
 }
 
-// The gauges in rank order (`before`). With more than one thread, those before a pivot gauge (a
-// sample's median) and the rest are sorted side by side: the order is total, so the result is
-// the one sort's.
+// The gauges in rank order (`before`). With more than one thread, those before a pivot gauge
+// (split_at_sampled_median) and the rest are sorted side by side: the order is total, so the
+// result is the one sort's.
 void rank_gauges(Paged<Gauge>& gauges, int threads) {
   Gauge* const first = gauges.begin();
   Gauge* const last = gauges.end();
@@ -415,11 +415,7 @@ void rank_gauges(Paged<Gauge>& gauges, int threads) {
     std::sort(first, last, before);
     return;
   }
-  std::vector<Gauge> sample;
-  for (std::size_t i = 0; i < gauges.size(); i += gauges.size() / 1024) sample.push_back(gauges[i]);
-  std::nth_element(sample.begin(), sample.begin() + std::ptrdiff_t(sample.size() / 2), sample.end(), before);
-  const Gauge pivot = sample[sample.size() / 2];
-  Gauge* const mid = std::partition(first, last, [&](const Gauge& g) { return before(g, pivot); });
+  Gauge* const mid = detail::split_at_sampled_median(first, last, before);
   detail::parallel_for(2, threads, [&](unsigned, std::size_t k) {
     if (k == 0) std::sort(first, mid, before);
     else std::sort(mid, last, before);

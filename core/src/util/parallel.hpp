@@ -1,5 +1,6 @@
 // A minimal worker pool: jobs 0..n-1 taken in turn by a few threads. Shared by the builder's
-// tiles and the checker (which shares no geometry with the builder, only this).
+// tiles and the checker (which shares no geometry with the builder, only this); and the split
+// that lets two threads sort (and join) the two halves of one array.
 #pragma once
 #include <algorithm>
 #include <atomic>
@@ -45,6 +46,21 @@ inline void parallel_for(std::size_t n, int threads, const std::function<void(un
   work(0);
   for (auto& t : pool) t.join();
   if (failed) std::rethrow_exception(failed);
+}
+
+// Reorders [first, last) so that the elements `less` than a pivot (the median of about 1,024
+// evenly spaced ones) come first, and returns where the others begin: two parts of about half
+// each that sort side by side into the one sort's order, where `less` is total. At least 1,024
+// elements.
+template <class T, class Less>
+T* split_at_sampled_median(T* first, T* last, Less less) {
+  const std::size_t n = std::size_t(last - first);
+  std::vector<T> sample;
+  sample.reserve(1025);
+  for (std::size_t i = 0; i < n; i += n / 1024) sample.push_back(first[i]);
+  std::nth_element(sample.begin(), sample.begin() + std::ptrdiff_t(sample.size() / 2), sample.end(), less);
+  const T pivot = sample[sample.size() / 2];
+  return std::partition(first, last, [&](const T& x) { return less(x, pivot); });
 }
 
 }  // namespace linf::detail
