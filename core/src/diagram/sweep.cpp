@@ -281,20 +281,21 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   // two segments beside the ray meet along it (zero_width.hpp). Its edges with either segment
   // are those of the two segments (their bisector: that separator).
   const std::vector<detail::Partners> in_line = diagonal ? detail::zero_width_partners(S) : std::vector<detail::Partners>{};
-  // The partner of seg at the place of point pt on the ray its edge (seg's half-edge hs, the
-  // point's gp) lies on, if pt's region there has no width, or -1. The ray: by the vertex
-  // farther from the place along it, or, where the edge has a vertex only at the place, by the
-  // way seg's half-edge runs from it.
-  auto partner = [&](std::int32_t seg, std::int32_t pt, const Topology::Half& hs, const Topology::Half& gp) -> std::int32_t {
+  // The partner of seg at the place of point pt on the ray their edge lies on (seg's half-edge
+  // of_seg, the point's twin of_pt), if pt's region there has no width, or -1. The ray: by the
+  // vertex farther from the place along it, or, where the edge has a vertex only at the place,
+  // by the way seg's half-edge runs from it.
+  auto partner = [&](std::int32_t seg, std::int32_t pt, const Topology::Half& of_seg,
+                     const Topology::Half& of_pt) -> std::int32_t {
     if (in_line.empty() || S[seg].is_point() || !S[pt].is_point()) return -1;
     const int end = detail::end_at(S, seg, pt);
     if (end < 0) return -1;
     const Vec2 none{double(S[pt].a.x), double(S[pt].a.y)};
-    const Vec2 from = hs.vertex0 >= 0 ? topo.vertices[std::size_t(hs.vertex0)] : none;
-    const Vec2 to = gp.vertex0 >= 0 ? topo.vertices[std::size_t(gp.vertex0)] : none;
+    const Vec2 from = of_seg.vertex0 >= 0 ? topo.vertices[std::size_t(of_seg.vertex0)] : none;
+    const Vec2 to = of_pt.vertex0 >= 0 ? topo.vertices[std::size_t(of_pt.vertex0)] : none;
     int ray = detail::ray_of(S[seg], end, from, to);
-    if (ray < 0 && hs.vertex0 >= 0) ray = detail::outward_ray(S[seg], end);
-    else if (ray < 0 && gp.vertex0 >= 0) ray = 1 - detail::outward_ray(S[seg], end);
+    if (ray < 0 && of_seg.vertex0 >= 0) ray = detail::outward_ray(S[seg], end);
+    else if (ray < 0 && of_pt.vertex0 >= 0) ray = 1 - detail::outward_ray(S[seg], end);
     return detail::partner_at(in_line, S, seg, pt, ray);
   };
   auto cut_between = [&](std::int32_t u, std::int32_t w) {

@@ -50,8 +50,8 @@ inline void parallel_for(std::size_t n, int threads, const std::function<void(un
 
 // Reorders [first, last) so that the elements `less` than a pivot (the median of about 1,024
 // evenly spaced ones) come first, and returns where the others begin: two parts of about half
-// each that sort side by side into the one sort's order, where `less` is total. At least 1,024
-// elements.
+// each, with elements equal under `less` all on one side, that sort side by side into the one
+// sort's order. At least 1,024 elements.
 template <class T, class Less>
 T* split_at_sampled_median(T* first, T* last, Less less) {
   const std::size_t n = std::size_t(last - first);

@@ -51,8 +51,9 @@ CheckReport check_diagram(const Diagram& d, const CheckOptions& opt = {});
 
 // The same check over pieces that come in batches (a layer too large to hold its pieces): the
 // pairs are drawn from the sites when it is made, each batch is sampled and marks the pairs its
-// pieces cross, finish() reports the pairs that no piece crossed (or one piece of other owners). typical_clearance: how far
-// from a site half the pairs are drawn (check_diagram: the median clearance of the pieces).
+// pieces cross, finish() reports the pairs that no piece crossed, or one piece of other owners.
+// typical_clearance: how far from a site half the pairs are drawn (check_diagram: the median
+// clearance of the pieces).
 class Checker {
  public:
   Checker(const Sites& sites, const Box& clip, double typical_clearance, const CheckOptions& opt = {});
