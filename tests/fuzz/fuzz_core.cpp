@@ -99,9 +99,8 @@ void sweep(const Layout& L, DiagramOptions opt, const Result& subdivision) {
   std::pair<int, int> at{-1, -1};
   const std::string d = same_pieces(subdivision.diagram.pieces, r.diagram.pieces, 1e-9, floor, &at);
   if (!d.empty() && opt.build.tile_size > 0 && !known::strict() &&
-      std::any_of(subdivision.diagram.sites.sites.begin(), subdivision.diagram.sites.sites.end(),
-                  [](const Site& s) { return !s.is_point() && s.a.x != s.b.x && s.a.y != s.b.y; })) {
-    // Perhaps the known fault of the sweep in tiles: then the whole layer's sweep is right.
+      known::of_tiled_sweep(subdivision.diagram.sites.sites) == known::SweepTilesLonePoints) {
+    // The known fault of the sweep in tiles only if the whole layer's sweep is right.
     DiagramOptions whole = opt;
     whole.build.tile_size = 0;
     const Result w = voronoi_of_polygons(L.polygons, whole);

@@ -65,6 +65,15 @@ inline Fault of_diagram(const std::vector<Point>& /*points*/, const std::vector<
   return None;
 }
 
+// Which known fault may explain the sweep in tiles disagreeing with the subdivision on a layer
+// of sites S: SweepTilesLonePoints where S has a slanted edge (it holds only if the whole
+// layer's sweep then matches the subdivision: the caller checks that).
+inline Fault of_tiled_sweep(const SiteList& S) {
+  for (const Site& s : S)
+    if (!s.is_point() && s.a.x != s.b.x && s.a.y != s.b.y) return SweepTilesLonePoints;
+  return None;
+}
+
 // Which known fault may explain the sweep and the subdivision disagreeing on a piece of the
 // sites `owners` (sites S): SubdivisionNearlyParallelEdges if an owner is an edge nearly
 // parallel to another edge of the layer (one of them steep: neither axis-parallel nor at 45

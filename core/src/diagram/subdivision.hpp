@@ -679,7 +679,7 @@ void collect(const Model& m, const std::vector<Builder>& workers, BuildStats& st
       if (!m.partners.empty() && m.S[p.a].is_point() != m.S[p.b].is_point()) {
         const int pt = m.S[p.a].is_point() ? p.a : p.b, seg = pt == p.a ? p.b : p.a;
         const int end = end_at(m.S, seg, pt);
-        const int other = end < 0 ? -1 : partner_at(m.partners, m.S, seg, pt, ray_of(m.S[seg], end, p.p, p.q));
+        const int other = end < 0 ? -1 : partner_at(m.partners, seg, end, ray_of(m.S[seg], end, p.p, p.q));
         if (other >= 0) {
           if (other < seg) continue;
           p.a = seg, p.b = other;

@@ -296,7 +296,7 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     int ray = detail::ray_of(S[seg], end, from, to);
     if (ray < 0 && of_seg.vertex0 >= 0) ray = detail::outward_ray(S[seg], end);
     else if (ray < 0 && of_pt.vertex0 >= 0) ray = 1 - detail::outward_ray(S[seg], end);
-    return detail::partner_at(in_line, S, seg, pt, ray);
+    return detail::partner_at(in_line, seg, end, ray);
   };
   auto cut_between = [&](std::int32_t u, std::int32_t w) {
     if (S[u].is_point() == S[w].is_point()) return false;

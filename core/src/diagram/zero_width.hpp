@@ -125,13 +125,9 @@ inline int end_at(const SiteList& S, std::int32_t seg, std::int32_t pt) {
   return s.a == at ? 0 : s.b == at ? 1 : -1;
 }
 
-// Segment seg's partner at the point site pt (one of its ends) on the ray `ray`, or, with ray
-// -1, the partner both rays have; -1 if none.
-inline std::int32_t partner_at(const std::vector<Partners>& P, const SiteList& S, std::int32_t seg, std::int32_t pt,
-                               int ray) {
-  if (P.empty() || S[std::size_t(seg)].is_point() || !S[std::size_t(pt)].is_point()) return -1;
-  const int end = end_at(S, seg, pt);
-  if (end < 0) return -1;
+// Segment seg's partner at its end `end` on the ray `ray`, or, with ray -1, the partner both
+// rays have; -1 if none.
+inline std::int32_t partner_at(const std::vector<Partners>& P, std::int32_t seg, int end, int ray) {
   const std::array<std::int32_t, 2>& o = P[std::size_t(seg)][std::size_t(end)];
   if (o[0] == o[1]) return o[0];
   return ray < 0 ? -1 : o[std::size_t(ray)];
