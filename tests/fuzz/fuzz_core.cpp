@@ -98,17 +98,6 @@ void sweep(const Layout& L, DiagramOptions opt, const Result& subdivision) {
   const double floor = 1e-12 * std::max({1.0, std::fabs(c.x1), std::fabs(c.x2), std::fabs(c.y1), std::fabs(c.y2)});
   std::pair<int, int> at{-1, -1};
   const std::string d = same_pieces(subdivision.diagram.pieces, r.diagram.pieces, 1e-9, floor, &at);
-  if (!d.empty() && opt.build.tile_size > 0 && !known::strict() &&
-      known::of_tiled_sweep(subdivision.diagram.sites.sites) == known::SweepTilesLonePoints) {
-    // The known fault of the sweep in tiles only if the whole layer's sweep is right.
-    DiagramOptions whole = opt;
-    whole.build.tile_size = 0;
-    const Result w = voronoi_of_polygons(L.polygons, whole);
-    if (same_pieces(subdivision.diagram.pieces, w.diagram.pieces, 1e-9, floor).empty()) {
-      known::count(known::SweepTilesLonePoints);
-      return;
-    }
-  }
   if (!d.empty()) {
     const known::Fault f = known::of_comparison(subdivision.diagram.sites.sites, at);
     if (f == known::None || known::strict()) fail("the sweep against the subdivision", d.c_str());

@@ -253,6 +253,14 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   topo.same_place.assign(S.size(), -1);
   for (std::size_t k = 0; k < points.size(); ++k)
     topo.same_place[points[k]] = k > 0 && S[points[k - 1]].a == S[points[k]].a ? topo.same_place[points[k - 1]] : points[k];
+  // More than two segments ending at one place: a pinch, or plain segments from one point.
+  bool crowded = false;
+  {
+    std::vector<std::uint8_t> ends(S.size(), 0);
+    for (const Site& s : S)
+      if (!s.is_point())
+        for (std::int32_t e : {s.end0, s.end1}) crowded = crowded || ++ends[std::size_t(topo.same_place[e])] > 2;
+  }
   // Boost's builder takes segments that meet at their ends only. Merged polygons meet where a
   // corner of one touches an edge of another; on a Manhattan layer the two then share a stretch
   // of boundary and are one polygon, but a corner touching a slanted edge, or a slanted corner
@@ -280,7 +288,9 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
   // of no width. The rule gives the ray to the point; the subdivision (and the files) have the
   // two segments beside the ray meet along it (zero_width.hpp). Its edges with either segment
   // are those of the two segments (their bisector: that separator).
-  const std::vector<detail::Partners> in_line = diagonal ? detail::zero_width_partners(S) : std::vector<detail::Partners>{};
+  // (Only where a segment is slanted or more than two end at one place: elsewhere no two are.)
+  const std::vector<detail::Partners> in_line =
+      diagonal || crowded ? detail::zero_width_partners(S) : std::vector<detail::Partners>{};
   // The partner of seg at the place of point pt on the ray their edge lies on (seg's half-edge
   // of_seg, the point's twin of_pt), if pt's region there has no width, or -1. The ray: by the
   // vertex farther from the place along it, or, where the edge has a vertex only at the place,
@@ -384,16 +394,31 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     }
     using At = std::pair<int, double>;
     const At far_in{-1, -reach}, far_out{c.n - 1, reach};
-    auto point_at = [&](const At& a) {
-      const Vec2 o = a.first < 0 ? c.v[0] : c.v[a.first];
-      const Vec2 d = a.first < 0 ? c.in : (a.first == c.n - 1 ? c.out : Vec2{c.v[a.first + 1].x - o.x, c.v[a.first + 1].y - o.y});
+    auto point_at = [&](const At& a) {  // a on a ray: far_in or far_out
+      const Vec2 o = a.first < 0 ? c.v[0] : c.v[c.n - 1], d = a.first < 0 ? c.in : c.out;
       return Vec2{o.x + a.second * d.x, o.y + a.second * d.y};
+    };
+    // The chain from a (at pa) to b (at pb), a <= b, cut at its bends.
+    auto walk = [&](const At& a, Vec2 pa, const At& b, const Vec2& pb) {
+      if (c.n > 1)  // a chain of one vertex is a straight line through it: no bend there
+        for (int k = a.first + 1; k <= b.first; ++k) emit(pa, c.v[k], u, w, c.line_of(k - 1)), pa = c.v[k];
+      emit(pa, pb, u, w, c.line_of(b.first));
     };
     At a, b;
     Vec2 pa, pb;
     if (e.v0 >= 0 && e.v1 >= 0) {
       pa = topo.vertices[e.v0], pb = topo.vertices[e.v1];
       a = c.locate(pa), b = c.locate(pb);
+      // A U's two rays run the same way, where a point's arc and a slanted line's are parallel:
+      // the breakpoint of an edge can leave for infinity along one ray and come back along the
+      // other later, when the line's arc has caught up (a point below a slanted segment). Such
+      // an edge is the U less the part between its vertices: its half-edge from v0 then has its
+      // site on the right of that part, not on the left.
+      if (c.n == 3 && a != b && (a < b) != c.left_of(s)) {
+        if (b < a) std::swap(a, b), std::swap(pa, pb);
+        walk(far_in, point_at(far_in), a, pa);
+        return walk(b, pb, far_out, point_at(far_out));
+      }
     } else if (e.v0 >= 0 || e.v1 >= 0) {
       const bool from_u = e.v0 >= 0;
       pa = topo.vertices[from_u ? e.v0 : e.v1];
@@ -404,10 +429,7 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
       a = far_in, b = far_out, pa = point_at(a), pb = point_at(b);
     }
     if (b < a) std::swap(a, b), std::swap(pa, pb);
-    Vec2 from = pa;
-    if (c.n > 1)  // a chain of one vertex is a straight line through it: no bend there
-      for (int k = a.first + 1; k <= b.first; ++k) emit(from, c.v[k], u, w, c.line_of(k - 1)), from = c.v[k];
-    emit(from, pb, u, w, c.line_of(b.first));
+    walk(a, pa, b, pb);
   };
   auto pieces_of = [&](const Edge& e) {
     const std::int32_t u = std::int32_t(e.pair >> 32), w = std::int32_t(e.pair & 0xffffffffu);
@@ -440,6 +462,25 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     cuts[n++] = to;
     for (int i = 0; i + 1 < n; ++i) emit(b.point(cuts[i]), b.point(cuts[i + 1]), u, w);
   };
+  // A point's arc between two arcs of one slanted segment vanishes where the segment's arc,
+  // parallel to the point's lower (or upper) ray, overtakes it. In L2 that never happens, and
+  // Boost's builder has no such event: the arc stays, and its two breakpoints run on past each
+  // other to infinity, one edge each, one each way along the pair's U. Both edges are one: the
+  // part of the U between their vertices (into e; f is marked gone, v0 = -2).
+  auto missed_vanishing = [&](Edge& e, Edge& f) {
+    const Site &s = S[e.ga], &t = S[e.gb];
+    if (!(sweep::is_diagonal(s) || sweep::is_diagonal(t)) || e.ga != f.ga || e.gb != f.gb) return;
+    if ((e.v0 >= 0) + (e.v1 >= 0) != 1 || (f.v0 >= 0) + (f.v1 >= 0) != 1 || (e.v0 >= 0) == (f.v0 >= 0)) return;
+    const sweep::Chain c(s, t);
+    if (c.n != 3) return;
+    Edge& from_u = e.v0 >= 0 ? e : f;  // its vertex is a's; the other's is b's
+    Edge& from_w = e.v0 >= 0 ? f : e;
+    const auto a = c.locate(topo.vertices[from_u.v0]), b = c.locate(topo.vertices[from_w.v1]);
+    // a's half-edge runs from its vertex with a on its left: along the walk if a is there.
+    if (a == b || (a < b) != c.left_of(s)) return;
+    from_u.v1 = from_w.v1;
+    from_w.v0 = -2;
+  };
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i + 1;
     while (j < edges.size() && edges[j].pair == edges[i].pair) ++j;
@@ -450,10 +491,12 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
       i = j;
       continue;
     }
+    if (j == i + 2) missed_vanishing(edges[i], edges[i + 1]);
     run.clear();
     out = &run;
     int with_pieces = 0;  // two edges' pieces are joined; one edge's are left as they are
     for (std::size_t k = i; k < j; ++k) {
+      if (edges[k].v0 == -2) continue;
       const std::size_t before = run.size();
       pieces_of(edges[k]);
       with_pieces += run.size() > before;

@@ -455,6 +455,45 @@ bool turns_left(const std::int64_t x[3], const std::int64_t y[3], const int side
   return sign_of_cross(tx[1] - tx[0], ty[1] - ty[0], tx[2] - tx[0], ty[2] - ty[0]) > 0;
 }
 
+// Whether the ball can be the event of its middle site's arc. Near the centre each site's
+// N_eps distance is linear (its side's gradient), so the three edges leave the centre as rays,
+// and along a ray the sweep position q.x + d(q) grows, stays or falls. The middle arc vanishes
+// there only if its edges with its neighbours come from behind the sweep (that position does
+// not grow along them) and its neighbours' new edge leads ahead (it does not fall). Where one
+// site's arc lies on both sides of two others (A, B, C, A from the bottom), (A, B, C) and
+// (B, C, A) have one ball and turn alike: this tells which of B and C vanishes. An edge along
+// which a third site ties decides nothing.
+template <typename I>
+bool middle_may_vanish(const int side[3], const Normal* nrm) {
+  using W = typename WideOf<I>::type;
+  using E = EpsT<W>;
+  // Gradient a is G[a] / D[a], D[a] > 0: a table side's (alpha, beta), a slanted line's
+  // -(1 + 2 eps) n / |n|_1.
+  E gx[3], gy[3];
+  W d[3];
+  for (int a = 0; a < 3; ++a) {
+    if (is_diagonal_side(side[a])) {
+      const Normal& n = nrm[a];
+      gx[a] = E::of(W(-n.x), W(-2 * n.x)), gy[a] = E::of(W(-n.y), W(-2 * n.y)), d[a] = W(n.l1());
+    } else {
+      gx[a] = E::of(W(kAlpha[side[a]][0]), W(kAlpha[side[a]][1]));
+      gy[a] = E::of(W(kBeta[side[a]][0]), W(kBeta[side[a]][1]));
+      d[a] = W(1);
+    }
+  }
+  // The rate of the sweep position along the edge of i and j (k the third site), on the side
+  // where k is farther: 1, 0 or -1, or 2 where k ties along it.
+  auto rate = [&](int i, int j, int k) {
+    const E wx = -(d[i] * gy[j] - d[j] * gy[i]), wy = d[i] * gx[j] - d[j] * gx[i];  // (g_i - g_j) turned
+    const int farther = ((d[i] * gx[k] - d[k] * gx[i]) * wx + (d[i] * gy[k] - d[k] * gy[i]) * wy).sign();
+    if (farther == 0) return 2;
+    const E along = (E::of(d[i], d[i]) + gx[i]) * wx + gy[i] * wy;  // ((1 + eps) e_x + g_i) . w, times d[i]
+    return farther * along.sign();
+  };
+  const int r12 = rate(0, 1, 2), r23 = rate(1, 2, 0), r13 = rate(0, 2, 1);
+  return !(r12 == 1 || r23 == 1 || r13 == -1);
+}
+
 // The first choice of sides among the candidates (bit k of cand[a]: side k for site a) that
 // gives a ball touching the segments within their spans; the choices within pref first, none
 // within skip (already tried).
@@ -476,6 +515,7 @@ bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const unsigned
                          touches_within(out, k, spans[2])))
             continue;
           if (spans && turns_left(x, y, side, out)) continue;
+          if (out.r.c[0] != 0 && !middle_may_vanish<I>(side, nrm)) continue;
           return true;
         }
   }
