@@ -54,8 +54,15 @@ struct Topology {
   void _reserve(std::size_t site_events) { vertices.reserve(2 * site_events); }  // as Boost's diagram: at most 2n
   template <typename Site>
   void _process_single_site(const Site&) {}
+  // Boost calls these as it processes an event, before it asks for the balls of the arcs that
+  // event has made neighbours: they tell the predicates where the sweep is (ball.hpp).
   template <typename Site>
-  std::pair<void*, void*> _insert_new_edge(const Site& s1, const Site& s2) {
+  std::pair<void*, void*> _insert_new_edge(const Site& s1, const Site& s2) {  // s2: the site event
+    sweep::sweep_at() = {true, s2.x0()};
+    return edge(s1, s2);
+  }
+  template <typename Site>
+  std::pair<void*, void*> edge(const Site& s1, const Site& s2) {
     halves.push_back({site_of(s1)});
     Half* h1 = &halves.back();
     halves.push_back({site_of(s2)});
@@ -67,7 +74,9 @@ struct Topology {
     vertices.push_back({c.x().limit(), c.y().limit()});
     static_cast<Half*>(e12)->vertex0 = v;
     static_cast<Half*>(e23)->vertex0 = v;
-    auto e = _insert_new_edge(s1, s3);
+    sweep::sweep_at() = {false, 0};
+    sweep::sweep_at_circle<typename std::decay_t<decltype(c.lower_x())>::Int>() = c.lower_x();
+    auto e = edge(s1, s3);
     static_cast<Half*>(e.second)->vertex0 = v;
     return e;
   }
@@ -207,6 +216,7 @@ template <typename I>
 void construct(const SiteList& S, const std::vector<char>& at_an_end, const std::vector<std::vector<std::int32_t>>& cuts,
                Topology& topo) {
   boost::polygon::voronoi_builder<std::int32_t, sweep::CoordinateTraits<I>, sweep::Predicates<I>> vb;
+  sweep::sweep_at() = {};  // before the first event
   auto insert = [&](std::int32_t site, std::int32_t from, std::int32_t to) {
     topo.inserted.push_back(site), topo.start.push_back(from), topo.end.push_back(to);
   };

@@ -498,19 +498,14 @@ TEST(Sweep, ATOfAxisParallelSegmentsAsTheSubdivision) {
   EXPECT_EQ(tested, 8);
 }
 
-TEST(Sweep, StarsOfPlainSegmentsAsTheSubdivision) {
-  // A known fault, not fixed: three to six plain segments from one point in directions of
-  // kStarDirections (with a point nearby on every third), which no merged polygon's boundary
-  // makes (an odd number at a vertex, or segments not bounding wedges apart). On some of them
-  // the sweep's diagram fails the checker or the sweep stops on an edge it cannot bound (149 of
-  // the 3,000 below). The smallest, (4,2)-(3,1), (4,2)-(4,3), (4,2)-(6,8), gives
-  // the steep segment a region above the vertical one's end that is that end's. A whole merged
-  // layer never has such a star (the polygon pinches above pass); a tile's sites, a part of the
-  // layer's boundary, can have three of a pinch's four edges.
-  if (!std::getenv("LINF_KNOWN_FAULTS"))
-    GTEST_SKIP() << "a known fault of the sweep on plain segments at one point (docs/design.md); LINF_KNOWN_FAULTS=1 runs it";
+// Three to six plain segments from one point in directions of kStarDirections, with a point
+// nearby on every third seed if `with_points`, which no merged polygon's boundary makes (an odd
+// number at a vertex, or segments not bounding wedges apart) and a tile's sites can (three of a
+// pinch's four edges): the seeds whose sweep fails the checker, differs from the subdivision or
+// throws, the first five reported.
+int failed_stars(std::uint32_t seeds, bool with_points) {
   int failed = 0;
-  for (std::uint32_t seed = 1; seed <= 3000; ++seed) {
+  for (std::uint32_t seed = 1; seed <= seeds; ++seed) {
     std::mt19937 rng(seed);
     const int k = 3 + int(rng() % 4);
     std::vector<int> used;
@@ -524,7 +519,11 @@ TEST(Sweep, StarsOfPlainSegmentsAsTheSubdivision) {
       segs.push_back({v, {v.x + kStarDirections[d][0] * len, v.y + kStarDirections[d][1] * len}});
     }
     std::vector<Point> pts;
-    if (seed % 3 == 0) pts.push_back({v.x + Coord(rng() % 21) - 10, v.y + Coord(rng() % 21) - 10});
+    const Point near{v.x + Coord(rng() % 21) - 10, v.y + Coord(rng() % 21) - 10};
+    if (seed % 3 == 0) {
+      if (!with_points) continue;
+      pts.push_back(near);
+    }
     DiagramOptions o;
     o.build.threads = 1;
     o.check = false;
@@ -545,7 +544,24 @@ TEST(Sweep, StarsOfPlainSegmentsAsTheSubdivision) {
     }
     if (!what.empty() && ++failed <= 5) ADD_FAILURE() << "seed " << seed << ": " << what;
   }
-  EXPECT_EQ(failed, 0) << "stars failed";
+  return failed;
+}
+
+TEST(Sweep, StarsOfPlainSegmentsAsTheSubdivision) {
+  // Many events at the star's point at once, where L-inf balls touch several of its segments
+  // there: the sweep took balls lying behind it (design.md) until it refused them.
+  EXPECT_EQ(failed_stars(3000, false), 0) << "stars failed";
+}
+
+TEST(Sweep, StarsWithAPointNearbyAsTheSubdivision) {
+  // A known fault, not fixed: the same stars with a point nearby on every third seed; 4 of the
+  // 1,000 with a point fail (the smallest: (2,4)-(-10,0), (2,4)-(4,6) and the point (1,4),
+  // where one ball touches both segments at their shared end and the point at its corner, for
+  // two triples of opposite turn). A whole merged layer never has such a star; a tile's sites
+  // could, with a lone point from its halo.
+  if (!std::getenv("LINF_KNOWN_FAULTS"))
+    GTEST_SKIP() << "a known fault of the sweep: plain segments at one point with a point nearby (docs/design.md); LINF_KNOWN_FAULTS=1 runs it";
+  EXPECT_EQ(failed_stars(3000, true), 0) << "stars failed";
 }
 
 TEST(Sweep, TheComparisonFindsAMovedMissingOrRelabelledPiece) {

@@ -494,6 +494,35 @@ bool middle_may_vanish(const int side[3], const Normal* nrm) {
   return !(r12 == 1 || r23 == 1 || r13 == -1);
 }
 
+// Where the sweep is: the site event (its x) or the circle event (its lower x, of the tier in
+// use) being processed, set by the builder's output as Boost calls it (sweep.cpp), which is
+// before Boost asks for the balls of the arcs it has made neighbours. A ball whose event lies
+// behind it is not theirs: in L2 three neighbouring arcs never have one, but an L-inf ball
+// touching them can sit where their arcs were never all in front (several sites touching one
+// ball at once, as segments from one point do). Per thread: tiles are swept side by side.
+struct SweepAt {
+  bool site = true;
+  std::int64_t x = INT64_MIN;
+};
+inline SweepAt& sweep_at() {
+  static thread_local SweepAt a;
+  return a;
+}
+template <typename I>
+RatioT<I>& sweep_at_circle() {
+  static thread_local RatioT<I> r;
+  return r;
+}
+// Whether ball b's event (the sweep touching its rightmost point) lies behind the sweep.
+template <typename I>
+bool behind_the_sweep(const BallT<I>& b) {
+  const SweepAt& a = sweep_at();
+  if (a.site && a.x == INT64_MIN) return false;
+  const EpsT<I> one_eps = EpsT<I>::of(I(1), I(1));
+  const RatioT<I> event(b.cx * one_eps + b.r, b.den * one_eps);
+  return compare(event, a.site ? RatioT<I>(I(a.x)) : sweep_at_circle<I>()) < 0;
+}
+
 // The first choice of sides among the candidates (bit k of cand[a]: side k for site a) that
 // gives a ball touching the segments within their spans; the choices within pref first, none
 // within skip (already tried).
@@ -516,6 +545,7 @@ bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const unsigned
             continue;
           if (spans && turns_left(x, y, side, out)) continue;
           if (out.r.c[0] != 0 && !middle_may_vanish<I>(side, nrm)) continue;
+          if (behind_the_sweep(out)) continue;
           return true;
         }
   }

@@ -138,6 +138,7 @@ inline double rounded_quotient(__int128 n, __int128 d) {
 // A ratio num / den with den > 0 at 0+.
 template <typename I>
 struct RatioT {
+  using Int = I;
   using Eps = EpsT<I>;
   Eps num, den = Eps(I(1));
   RatioT() = default;
