@@ -462,33 +462,48 @@ bool turns_left(const std::int64_t x[3], const std::int64_t y[3], const int side
 // not grow along them) and its neighbours' new edge leads ahead (it does not fall). Where one
 // site's arc lies on both sides of two others (A, B, C, A from the bottom), (A, B, C) and
 // (B, C, A) have one ball and turn alike: this tells which of B and C vanishes. An edge along
-// which a third site ties decides nothing.
+// which a third site ties decides nothing. Asked only where a segment is among the three (no
+// point set has shown the need, and they have the most events).
 template <typename I>
 bool middle_may_vanish(const int side[3], const Normal* nrm) {
-  using W = typename WideOf<I>::type;
-  using E = EpsT<W>;
-  // Gradient a is G[a] / D[a], D[a] > 0: a table side's (alpha, beta), a slanted line's
+  // Every gradient is linear in eps and every quantity below a sum of products of two of them:
+  // polynomials of degree 2, in T: int64 where every slanted normal is (+-1, +-1) (the int64
+  // tier), else the wide type of the tier.
+  using T = std::conditional_t<std::is_same_v<I, std::int64_t>, std::int64_t, typename WideOf<I>::type>;
+  struct Lin {  // c0 + c1 eps
+    T c0, c1;
+  };
+  struct Quad {  // c0 + c1 eps + c2 eps^2
+    T c0, c1, c2;
+    int sign() const { return c0 != 0 ? (c0 > 0 ? 1 : -1) : c1 != 0 ? (c1 > 0 ? 1 : -1) : c2 > 0 ? 1 : c2 < 0 ? -1 : 0; }
+  };
+  auto mul = [](const Lin& a, const Lin& b) { return Quad{a.c0 * b.c0, a.c0 * b.c1 + a.c1 * b.c0, a.c1 * b.c1}; };
+  auto add = [](const Quad& a, const Quad& b) { return Quad{a.c0 + b.c0, a.c1 + b.c1, a.c2 + b.c2}; };
+  auto lin = [](const T& k, const Lin& a, const T& m, const Lin& b) {  // k a - m b
+    return Lin{k * a.c0 - m * b.c0, k * a.c1 - m * b.c1};
+  };
+  // Gradient a is g[a] / d[a], d[a] > 0: a table side's (alpha, beta), a slanted line's
   // -(1 + 2 eps) n / |n|_1.
-  E gx[3], gy[3];
-  W d[3];
+  Lin gx[3], gy[3];
+  T d[3];
   for (int a = 0; a < 3; ++a) {
     if (is_diagonal_side(side[a])) {
       const Normal& n = nrm[a];
-      gx[a] = E::of(W(-n.x), W(-2 * n.x)), gy[a] = E::of(W(-n.y), W(-2 * n.y)), d[a] = W(n.l1());
+      gx[a] = {T(-n.x), T(-2 * n.x)}, gy[a] = {T(-n.y), T(-2 * n.y)}, d[a] = T(n.l1());
     } else {
-      gx[a] = E::of(W(kAlpha[side[a]][0]), W(kAlpha[side[a]][1]));
-      gy[a] = E::of(W(kBeta[side[a]][0]), W(kBeta[side[a]][1]));
-      d[a] = W(1);
+      gx[a] = {T(kAlpha[side[a]][0]), T(kAlpha[side[a]][1])};
+      gy[a] = {T(kBeta[side[a]][0]), T(kBeta[side[a]][1])};
+      d[a] = T(1);
     }
   }
   // The rate of the sweep position along the edge of i and j (k the third site), on the side
   // where k is farther: 1, 0 or -1, or 2 where k ties along it.
   auto rate = [&](int i, int j, int k) {
-    const E wx = -(d[i] * gy[j] - d[j] * gy[i]), wy = d[i] * gx[j] - d[j] * gx[i];  // (g_i - g_j) turned
-    const int farther = ((d[i] * gx[k] - d[k] * gx[i]) * wx + (d[i] * gy[k] - d[k] * gy[i]) * wy).sign();
+    const Lin wx = lin(d[j], gy[i], d[i], gy[j]), wy = lin(d[i], gx[j], d[j], gx[i]);  // (g_i - g_j) turned
+    const int farther = add(mul(lin(d[i], gx[k], d[k], gx[i]), wx), mul(lin(d[i], gy[k], d[k], gy[i]), wy)).sign();
     if (farther == 0) return 2;
-    const E along = (E::of(d[i], d[i]) + gx[i]) * wx + gy[i] * wy;  // ((1 + eps) e_x + g_i) . w, times d[i]
-    return farther * along.sign();
+    const Lin ex{T(d[i] + gx[i].c0), T(d[i] + gx[i].c1)};  // (1 + eps) d_i + g_i's x
+    return farther * add(mul(ex, wx), mul(gy[i], wy)).sign();  // ((1 + eps) e_x + g_i) . w, times d[i]
   };
   const int r12 = rate(0, 1, 2), r23 = rate(1, 2, 0), r13 = rate(0, 2, 1);
   return !(r12 == 1 || r23 == 1 || r13 == -1);
@@ -519,8 +534,13 @@ bool behind_the_sweep(const BallT<I>& b) {
   const SweepAt& a = sweep_at();
   if (a.site && a.x == INT64_MIN) return false;
   const EpsT<I> one_eps = EpsT<I>::of(I(1), I(1));
-  const RatioT<I> event(b.cx * one_eps + b.r, b.den * one_eps);
-  return compare(event, a.site ? RatioT<I>(I(a.x)) : sweep_at_circle<I>()) < 0;
+  if (a.site) {  // the sign of (cx - x den)(1 + eps) + r, den > 0: its constant term, mostly
+    using W = typename WideOf<I>::type;
+    const W c0 = W(b.cx.c[0]) - W(a.x) * W(b.den.c[0]) + W(b.r.c[0]);
+    if (c0 != 0) return c0 < 0;
+    return ((b.cx - I(a.x) * b.den) * one_eps + b.r).sign() < 0;
+  }
+  return compare(RatioT<I>(b.cx * one_eps + b.r, b.den * one_eps), sweep_at_circle<I>()) < 0;
 }
 
 // The first choice of sides among the candidates (bit k of cand[a]: side k for site a) that
@@ -544,7 +564,7 @@ bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const unsigned
                          touches_within(out, k, spans[2])))
             continue;
           if (spans && turns_left(x, y, side, out)) continue;
-          if (out.r.c[0] != 0 && !middle_may_vanish<I>(side, nrm)) continue;
+          if (spans && out.r.c[0] != 0 && !middle_may_vanish<I>(side, nrm)) continue;
           if (behind_the_sweep(out)) continue;
           return true;
         }
