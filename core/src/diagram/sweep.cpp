@@ -86,9 +86,11 @@ struct Topology {
 // The part of segment p-q inside the box (Liang-Barsky); false if none. An end cut at a side
 // lies exactly on it, and on an axis-parallel or diagonal segment (every L-inf bisector piece
 // of Manhattan sites) the other coordinate follows exactly: the same cut of the same line from
-// another of its points (a tile's, the far field's) gives the same bits. A piece of another
-// slope (with 45-degree sites: 1/3, 3) comes with its line's equation (exact in doubles),
-// which gives the other coordinate from the side alone, equally independent of p and q.
+// another of its points (a tile's, the far field's) gives the same bits. A piece of a slanted
+// site's bisector comes with its line's equation (exact in integers), which gives the other
+// coordinate from the side alone, equally independent of p and q: one of another slope (with
+// 45-degree sites: 1/3, 3), and a diagonal one whose p is rounded from a rational (a ray from a
+// bend of a point's U with a steep edge).
 bool clip_segment(Vec2& p, Vec2& q, const Box& b, const sweep::Line* eq = nullptr) {
   double t0 = 0, t1 = 1;
   int s0 = -1, s1 = -1;  // the sides that cut: 0 x = x1, 1 x = x2, 2 y = y1, 3 y = y2
@@ -106,7 +108,7 @@ bool clip_segment(Vec2& p, Vec2& q, const Box& b, const sweep::Line* eq = nullpt
   auto at = [&](double t, int side) -> Vec2 {
     if (side < 0) return {p.x + t * dx, p.y + t * dy};
     const double line = side == 0 ? b.x1 : side == 1 ? b.x2 : side == 2 ? b.y1 : b.y2;
-    if (!exact && eq) return side < 2 ? Vec2{line, eq->y_at(line)} : Vec2{eq->x_at(line), line};
+    if (eq) return side < 2 ? Vec2{line, eq->y_at(line)} : Vec2{eq->x_at(line), line};
     if (!exact) return side < 2 ? Vec2{line, p.y + t * dy} : Vec2{p.x + t * dx, line};
     if (side < 2) return {line, dy == 0 ? p.y : p.y + (line - p.x) * (dy / dx)};  // dy / dx is +-1
     return {dx == 0 ? p.x : p.x + (line - p.y) * (dx / dy), line};
@@ -450,7 +452,8 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
       if (e.v0 < 0 || e.v1 < 0)
         throw std::logic_error("sweep builder: an unbounded diagonal edge between sites " + std::to_string(u) +
                                " and " + std::to_string(w));
-      return emit(topo.vertices[e.v0], topo.vertices[e.v1], u, w);
+      const sweep::Line l = sweep::Bisector::diagonal(s, t, topo.vertices[e.v0], topo.vertices[e.v1]);
+      return emit(topo.vertices[e.v0], topo.vertices[e.v1], u, w, &l);
     }
     double from, to;  // the edge's parameter range
     if (e.v0 >= 0 && e.v1 >= 0) {
@@ -470,7 +473,10 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
       for (double c : {b.mid_p - b.half, b.mid_p + b.half})
         if (c > from && c < to) cuts[n++] = c;
     cuts[n++] = to;
-    for (int i = 0; i + 1 < n; ++i) emit(b.point(cuts[i]), b.point(cuts[i + 1]), u, w);
+    for (int i = 0; i + 1 < n; ++i) {
+      const sweep::Line l = b.line_between(cuts[i], cuts[i + 1]);
+      emit(b.point(cuts[i]), b.point(cuts[i + 1]), u, w, &l);
+    }
   };
   // A point's arc between two arcs of one slanted segment vanishes where the segment's arc,
   // parallel to the point's lower (or upper) ray, overtakes it. In L2 that never happens, and

@@ -28,6 +28,27 @@
 
 namespace linf::sweep {
 
+// The line a x + b y = c, its coefficients exact integers (a slanted site's normal makes them
+// up to 2^94): where a piece of it is cut at a tile's side, the other coordinate follows from
+// the side alone, so the same cut from any tile has the same bits.
+struct Line {
+  __int128 a = 0, b = 0, c = 0;
+  double y_at(double x) const { return solve(c, a, b, x); }
+  double x_at(double y) const { return solve(c, b, a, y); }
+
+ private:
+  // (c - a t) / b: exact up to the last division where 2t is an integer (a tile's side is),
+  // else in long double.
+  static double solve(__int128 c, __int128 a, __int128 b, double t) {
+    const double t2 = 2 * t;
+    if (t2 == std::floor(t2) && std::fabs(t2) < 0x1p62) {
+      const __int128 num = 2 * c - a * __int128(t2);
+      return double(num) / double(2 * b);
+    }
+    return double((static_cast<long double>(c) - static_cast<long double>(a) * t) / static_cast<long double>(b));
+  }
+};
+
 struct Bisector {
   bool along_y = false;  // the parameter is y (x = f(y)); else x (y = f(x))
   bool straight = false; // a diagonal between two segments: the piece joins its two vertices
@@ -103,32 +124,29 @@ struct Bisector {
   // parameter: walking up x = f(y), left is smaller x; walking right along y = f(x), left is
   // larger y. A site is tested at its middle; a segment's end on the perpendicular through it
   // lies on the bisector, and is on the side its segment is not.
+  // The line of the part holding the parameters lo..hi (between two bends or beyond one):
+  // doubled, its coefficients are integers (the bends lie at halves of integers).
+  Line line_between(double lo, double hi) const {
+    const double m = 0.5 * (lo + hi);  // no flat part where half = 0 (two points on a diagonal)
+    const double slope = m > mid_p + half ? slope_hi : m < mid_p - half || half == 0 ? slope_lo : 0.0;
+    const double p0 = m > mid_p + half ? mid_p + half : mid_p - half;
+    // f - slope p = mid_f - slope p0, times 2; f is x where the parameter is y.
+    const __int128 k = __int128(slope), c = __int128(2 * mid_f) - k * __int128(2 * p0);
+    return along_y ? Line{2, -2 * k, c} : Line{-2 * k, 2, c};
+  }
+  // The diagonal of two perpendicular segments through their lines' crossing that runs from p
+  // to q.
+  static Line diagonal(const Site& s, const Site& t, const Vec2& p, const Vec2& q) {
+    const Site& h = s.a.y == s.b.y ? s : t;
+    const Site& v = s.a.y == s.b.y ? t : s;
+    const bool rising = (q.x - p.x) * (q.y - p.y) > 0;  // x - y = c, else x + y = c
+    return rising ? Line{1, -1, __int128(v.a.x) - h.a.y} : Line{1, 1, __int128(v.a.x) + h.a.y};
+  }
   bool left_of_growing(const Site& s, const Site& other) const {
     const double rx = 0.5 * double(s.a.x + s.b.x), ry = 0.5 * double(s.a.y + s.b.y);
     const double f = at(along_y ? ry : rx), g = along_y ? rx : ry;
     if (g == f) return !left_of_growing(other, s);
     return along_y ? g < f : g > f;
-  }
-};
-
-// The line a x + b y = c, its coefficients exact integers (a slanted site's normal makes them
-// up to 2^94): where a piece of it is cut at a tile's side, the other coordinate follows from
-// the side alone, so the same cut from any tile has the same bits.
-struct Line {
-  __int128 a = 0, b = 0, c = 0;
-  double y_at(double x) const { return solve(c, a, b, x); }
-  double x_at(double y) const { return solve(c, b, a, y); }
-
- private:
-  // (c - a t) / b: exact up to the last division where 2t is an integer (a tile's side is),
-  // else in long double.
-  static double solve(__int128 c, __int128 a, __int128 b, double t) {
-    const double t2 = 2 * t;
-    if (t2 == std::floor(t2) && std::fabs(t2) < 0x1p62) {
-      const __int128 num = 2 * c - a * __int128(t2);
-      return double(num) / double(2 * b);
-    }
-    return double((static_cast<long double>(c) - static_cast<long double>(a) * t) / static_cast<long double>(b));
   }
 };
 
@@ -154,7 +172,8 @@ inline bool is_diagonal(const Site& s) { return !s.is_point() && s.a.x != s.b.x 
 //   its ends.
 struct Chain {
   Vec2 v[3];
-  Line parts[2];  // the lines of v[0]-v[1] and v[1]-v[2] (the rays are diagonal: exact anyway)
+  Line parts[2];  // the lines of v[0]-v[1] and v[1]-v[2]
+  Line rays[2];   // the in-ray's and the out-ray's (diagonal, but from bends rounded from rationals)
   Line whole;     // the middle line of two parallel slanted lines (n = 1)
   bool has_whole = false;
   int n = 0;
@@ -246,6 +265,11 @@ struct Chain {
                    b1 = __int128(B) * sy;
     parts[0] = {a0, b0, D + a0 * p.a.x + b0 * p.a.y};
     parts[1] = {a1, b1, D + a1 * p.a.x + b1 * p.a.y};
+    // Both rays run along (s_x, s_y): s_y x - s_x y is constant on each, times 2B through v[0]
+    // (P + (-s_x, s_y) D / 2B) and times 2A through v[2] (P + (s_x, -s_y) D / 2A).
+    const __int128 form = __int128(sy) * p.a.x - __int128(sx) * p.a.y;
+    rays[0] = {2 * __int128(B) * sy, -2 * __int128(B) * sx, 2 * __int128(B) * form - 2 * __int128(sx) * sy * D};
+    rays[1] = {2 * __int128(A) * sy, -2 * __int128(A) * sx, 2 * __int128(A) * form + 2 * __int128(sx) * sy * D};
     in = {mx, my};        // into v[0] along +(1, 1) in (u, v)
     out = {-mx, -my};     // out of v[2] along (-1, -1)
     // In (u, v) the walk goes clockwise round P (P on its right); a reflection with
@@ -253,11 +277,12 @@ struct Chain {
     left_is_point = sx * sy < 0;
   }
 
-  // The line of part k (0 .. n - 2, the inner parts; a single line's own), or none (a diagonal
-  // ray: exact anyway).
+  // The line of part k (-1 the in-ray, 0 .. n - 2 the inner parts, n - 1 the out-ray; a single
+  // line's own), or none (a single line through a point: exact anyway).
   const Line* line_of(int k) const {
     if (n == 1) return has_whole ? &whole : nullptr;
-    return k >= 0 && k + 1 < n ? &parts[k] : nullptr;
+    if (k < 0) return &rays[0];
+    return k + 1 < n ? &parts[k] : &rays[1];
   }
 
   // The bisector of two segments' lines that cross, one of them slanted: with each line's
