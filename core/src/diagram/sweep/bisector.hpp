@@ -120,10 +120,6 @@ struct Bisector {
   Vec2 point(double p) const { return along_y ? Vec2{at(p), p} : Vec2{p, at(p)}; }
   bool bends() const { return half > 0 && !(slope_lo == 0 && slope_hi == 0); }
 
-  // Whether site s lies on the left of the bisector with `other` walked towards growing
-  // parameter: walking up x = f(y), left is smaller x; walking right along y = f(x), left is
-  // larger y. A site is tested at its middle; a segment's end on the perpendicular through it
-  // lies on the bisector, and is on the side its segment is not.
   // The line of the part holding the parameters lo..hi (between two bends or beyond one):
   // doubled, its coefficients are integers (the bends lie at halves of integers).
   Line line_between(double lo, double hi) const {
@@ -142,6 +138,10 @@ struct Bisector {
     const bool rising = (q.x - p.x) * (q.y - p.y) > 0;  // x - y = c, else x + y = c
     return rising ? Line{1, -1, __int128(v.a.x) - h.a.y} : Line{1, 1, __int128(v.a.x) + h.a.y};
   }
+  // Whether site s lies on the left of the bisector with `other` walked towards growing
+  // parameter: walking up x = f(y), left is smaller x; walking right along y = f(x), left is
+  // larger y. A site is tested at its middle; a segment's end on the perpendicular through it
+  // lies on the bisector, and is on the side its segment is not.
   bool left_of_growing(const Site& s, const Site& other) const {
     const double rx = 0.5 * double(s.a.x + s.b.x), ry = 0.5 * double(s.a.y + s.b.y);
     const double f = at(along_y ? ry : rx), g = along_y ? rx : ry;
