@@ -61,9 +61,8 @@ void bind_diagram(py::module_& m) {
       "progress: a callable(stage, done, total): the stages' names as they start (done 0), and inside the\n"
       "builder's and the merge's stages how many parts are done of how many, at most ten times a second, from\n"
       "the core's threads (it is given the GIL); what it raises is reported and dropped.\n"
-      "builder: 'subdivision' (default) or 'sweep', the sweep-line builder where it takes the layer (points and\n"
-      "axis-parallel edges so far; with `tile` and `threads` as the subdivision; not with `tiles`); else the\n"
-      "subdivision. Same pieces.");
+      "builder: 'subdivision' (default) or 'sweep', the sweep-line builder (any layer; with `tile`, `threads` and\n"
+      "`tiles` as the subdivision). Same pieces.");
 
   m.def(
       "build_tile_job",

@@ -3,10 +3,11 @@
 // exactly. O(n log n). Same output as build_pieces: straight pieces with their owners and end
 // clearances, joined per owner pair, clipped to `clip`; kinds are left for the classifier.
 //
-// It takes points, axis-parallel and 45-degree segments (every Manhattan or octilinear layer); sweep_handles says
-// whether it takes a layer's sites. sweep_pieces builds the whole layer in one thread;
+// It takes points and non-crossing segments of any slope (sweep_handles says so for every
+// layer; it stays for callers that ask). sweep_pieces builds the whole layer in one thread;
 // build_pieces with BuildOptions::sweep builds it tile by tile with sweep_part, a tile a
-// thread. The subdivision builder stays the default and the oracle it is checked by.
+// thread. The batch and the editor build with it; the core's own default stays the subdivision
+// builder, the oracle it is checked by.
 #pragma once
 #include <vector>
 

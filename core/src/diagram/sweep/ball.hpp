@@ -547,6 +547,34 @@ bool behind_the_sweep(const BallT<I>& b) {
   return compare(RatioT<I>(b.cx * one_eps + b.r, b.den * one_eps), sweep_at_circle<I>()) < 0;
 }
 
+// Whether middle_may_vanish is asked of a ball with a segment among its sites: where its radius
+// stays above 0 as eps -> 0 (at a corner, radius 0, the edges leave no room to vanish in). That
+// is r's term at den's lowest order, not r's constant term: a system singular at eps = 0 (a
+// continuum of L-inf squares, e.g. two segments from one point touched there and a point on a
+// side) has den's and r's constant terms 0 and a finite ball all the same. A singular ball is
+// not asked where a point of the three lies on a segment's line among them (the segment's own
+// end, as at every polygon vertex): there the linear rates misjudge, and Manhattan layers'
+// events at such ends were refused (design.md, "Where L-inf leaves Boost's Euclidean structure").
+template <typename I>
+bool vanishing_asked(const BallT<I>& b, const std::int64_t x[3], const std::int64_t y[3], const int side[3],
+                     const Normal* nrm) {
+  if (b.r.c[0] != 0) return true;
+  int k = 0;
+  while (k < kTerms && b.den.c[k] == 0) ++k;
+  if (k == 0 || k == kTerms || b.r.c[k] == 0) return false;
+  for (int a = 0; a < 3; ++a) {
+    if (side[a] >= 8) continue;
+    for (int s = 0; s < 3; ++s) {
+      if (side[s] < 8) continue;
+      const std::int64_t dx = x[a] - x[s], dy = y[a] - y[s];
+      const bool on = is_diagonal_side(side[s]) ? __int128(nrm[s].x) * dx + __int128(nrm[s].y) * dy == 0
+                                                : (side[s] == kLineBelowIt || side[s] == kLineAboveIt ? dy == 0 : dx == 0);
+      if (on) return false;
+    }
+  }
+  return true;
+}
+
 // The first choice of sides among the candidates (bit k of cand[a]: side k for site a) that
 // gives a ball touching the segments within their spans; the choices within pref first, none
 // within skip (already tried).
@@ -568,7 +596,7 @@ bool ball_among(const std::int64_t x[3], const std::int64_t y[3], const unsigned
                          touches_within(out, k, spans[2])))
             continue;
           if (spans && turns_left(x, y, side, out)) continue;
-          if (spans && out.r.c[0] != 0 && !middle_may_vanish<I>(side, nrm)) continue;
+          if (spans && vanishing_asked(out, x, y, side, nrm) && !middle_may_vanish<I>(side, nrm)) continue;
           if (behind_the_sweep(out)) continue;
           return true;
         }
