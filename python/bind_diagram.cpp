@@ -40,7 +40,7 @@ void bind_diagram(py::module_& m) {
       py::arg("polygons"), py::arg("check") = true, py::arg("check_pairs") = 2000, py::arg("threads") = 0,
       py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("pieces") = true,
       py::arg("gds") = "", py::arg("gds_layer") = 0, py::arg("gds_cell") = "VORONOI", py::arg("tiles") = py::none(),
-      py::arg("progress") = py::none(), py::arg("builder") = "subdivision",
+      py::arg("progress") = py::none(), py::arg("builder") = "sweep",
       "Diagram of polygons [(outer, [holes])], rings as [(x, y)] in integer DBU, or the same flat:\n"
       "(points, rings), points array('q') x0, y0, x1, y1, ..., rings array('q') of point counts, each outer\n"
       "ring followed by its holes with negative counts. Shapes are merged first.\n"
@@ -61,8 +61,8 @@ void bind_diagram(py::module_& m) {
       "progress: a callable(stage, done, total): the stages' names as they start (done 0), and inside the\n"
       "builder's and the merge's stages how many parts are done of how many, at most ten times a second, from\n"
       "the core's threads (it is given the GIL); what it raises is reported and dropped.\n"
-      "builder: 'subdivision' (default) or 'sweep', the sweep-line builder (any layer; with `tile`, `threads` and\n"
-      "`tiles` as the subdivision). Same pieces.");
+      "builder: 'sweep' (default), the sweep-line builder (any layer; with `tile`, `threads` and `tiles`), or\n"
+      "'subdivision', the subdivision builder (several times slower; the tests' oracle). Same pieces.");
 
   m.def(
       "build_tile_job",
@@ -82,7 +82,7 @@ void bind_diagram(py::module_& m) {
   m.def(
       "voronoi_sites",
       [](const std::vector<XY>& points, const std::vector<std::pair<XY, XY>>& segments, const py::object& check, int pairs,
-         int threads) {
+         int threads, const std::string& builder) {
         std::vector<Point> p;
         for (auto& q : points) p.push_back({q.first, q.second});
         std::vector<Segment> s;
@@ -90,13 +90,14 @@ void bind_diagram(py::module_& m) {
         Result r;
         {
           py::gil_scoped_release unlocked;
-          r = voronoi_of_sites(p, s, options(check, pairs, threads));
+          r = voronoi_of_sites(p, s, options(check, pairs, threads, 0, py::none(), builder));
         }
         return result_dict(r);
       },
       py::arg("points"), py::arg("segments"), py::arg("check") = true, py::arg("check_pairs") = 2000,
-      py::arg("threads") = 0,
-      "Diagram of plain sites: points [(x, y)] and non-crossing segments [((x1, y1), (x2, y2))]. Same output.");
+      py::arg("threads") = 0, py::arg("builder") = "sweep",
+      "Diagram of plain sites: points [(x, y)] and non-crossing segments [((x1, y1), (x2, y2))]. Same output;\n"
+      "builder as in voronoi_polygons.");
 }
 
 }  // namespace linf::bind

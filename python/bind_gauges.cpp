@@ -130,7 +130,7 @@ void bind_gauges(py::module_& m) {
       py::arg("tooth_fraction") = 0.5, py::arg("space_limit_widths") = 10.0, py::arg("pieces") = false, py::arg("paths") = false,
       py::arg("tile") = -1.0, py::arg("csv") = "", py::arg("dbu") = 1.0, py::arg("gds") = "", py::arg("gds_layer") = 0,
       py::arg("gds_cell") = "VORONOI", py::arg("gauges_csv") = "", py::arg("columns") = "",
-      py::arg("tiles") = py::none(), py::arg("progress") = py::none(), py::arg("builder") = "subdivision",
+      py::arg("tiles") = py::none(), py::arg("progress") = py::none(), py::arg("builder") = "sweep",
       "Ranked gauges of polygons (same input as voronoi_polygons); the diagram is built and checked first.\n"
       "Returns {'gauges': {'count': n, 'reals': bytes, 'ints': bytes, 'paths': [[(x, y)]] if paths=True else None},\n"
       "'stretches': n, ...}: the gauges in rank order as columns, float64 x10 per gauge (x1, y1, x2, y2, cx, cy, cd,\n"

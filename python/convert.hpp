@@ -100,7 +100,7 @@ py::bytes bytes_of(const std::vector<T>& v) {
 py::bytes blank_bytes(std::size_t n, char*& data);
 
 DiagramOptions options(const py::object& check, int pairs, int threads, double tile = 0, const py::object& progress = py::none(),
-                       const std::string& builder = "subdivision");
+                       const std::string& builder = "sweep");
 
 // What is taken from the diagram while the core holds it: voronoi.csv and the pieces as GDSII
 // for the editor to read (`gds_layer`: the input's layer number, datatypes 200 + kind).

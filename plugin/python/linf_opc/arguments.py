@@ -24,9 +24,8 @@ def parse_tile(text, dbu):
 
 def parse_builder(text):
     """-rd builder=sweep|subdivision: the diagram's construction (the same diagram either way).
-    The sweep-line builder (the default) takes Manhattan layers (points and axis-parallel edges),
-    tile by tile on the worker threads or a cluster's workers; on any other layer the
-    subdivision builds it. subdivision: the subdivision always."""
+    sweep (the default): the sweep-line builder, on any layer, tile by tile on the worker
+    threads or a cluster's workers. subdivision: the subdivision builder."""
     if text in (None, "", "sweep"):
         return "sweep"
     if text == "subdivision":

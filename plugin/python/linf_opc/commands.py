@@ -3,8 +3,8 @@
 
   klayout -b -r macros/linf_opc.py -rd cmd=COMMAND -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd out=DIR
            [-rd tile=UM|0|auto]  (the diagram builder's tiles; the same pieces for any size)
-           [-rd builder=sweep|subdivision]  (sweep, the default: the sweep-line builder on Manhattan layers, the
-           subdivision on others; the same pieces)
+           [-rd builder=sweep|subdivision]  (sweep, the default: the sweep-line builder, on any layer; the
+           subdivision builder, several times slower; the same pieces)
            [-rd check=sample|full]  (the independent check: sampled search for closer sites, or on every piece)
            [-rd scheduler=tcp://HOST:PORT]  (voronoi, gauges, select, split, flow: the tiles built on that
            Dask cluster's workers; the same files)

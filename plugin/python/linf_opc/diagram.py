@@ -44,7 +44,7 @@ def compute(polygons, check=True, check_pairs=2000, tile=-1, csv_path=None, dbu=
             draw_layer=None, draw_cell="VORONOI", threads=0, progress=None, builder="sweep"):
     """tile: side of the builder's tiles in DBU; 0 one tile, -1 automatic. The diagram is the
     same for every tile size; tiles bound the memory the builder holds at once.
-    builder: "sweep" (where it takes the layer, else the subdivision) or "subdivision"
+    builder: "sweep" or "subdivision"
     (arguments.parse_builder; the same diagram).
     check: True or "sample" (the default), "full" (arguments.parse_check), False none.
     csv_path: the core also writes voronoi.csv there (micrometres, `dbu`).
