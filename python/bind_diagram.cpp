@@ -97,9 +97,8 @@ void bind_diagram(py::module_& m) {
       py::arg("points"), py::arg("segments"), py::arg("check") = true, py::arg("check_pairs") = 2000,
       py::arg("threads") = 0, py::arg("builder") = "subdivision",
       "Diagram of plain sites: points [(x, y)] and non-crossing segments [((x1, y1), (x2, y2))]. Same output.\n"
-      "builder: 'subdivision' (default: it also takes segments that cross, and a point inside a segment owns no\n"
-      "piece) or 'sweep' (several times faster; segments that do not cross, points off the segments' insides,\n"
-      "as a merged layer's sites are).");
+      "builder: 'subdivision' (default; it also takes segments that cross) or 'sweep' (several times faster;\n"
+      "segments that do not cross, points off the segments' insides, as a merged layer's sites are).");
 }
 
 }  // namespace linf::bind
