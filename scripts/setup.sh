@@ -11,6 +11,6 @@ echo "installed the KLayout package in $home/salt/linf_opc (menu: Tools > L-inf 
 out="${1:-out/sample}"
 # The main job: the whole flow (diagram, gauges, pattern selection against the sample's
 # markers on 100/0, calibration/verification split) on the sample's metal layer.
-klayout -b -r macros/linf_opc.py -rd cmd=flow -rd input=samples/metal.oas -rd layer=1/0 -rd markers=100/0 -rd out="$out"
+python3 macros/linf_opc.py -rd cmd=flow -rd input=samples/metal.oas -rd layer=1/0 -rd markers=100/0 -rd out="$out"
 echo "open the results with: klayout $out/windows.oas -m $out/flow.lyrdb   (report: $out/report.html;"
 echo "  clip libraries: $out/calibration.oas, $out/verification.oas)"

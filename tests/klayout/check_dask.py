@@ -29,12 +29,11 @@ import time
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import arg, expect, finish, repo, same_files  # noqa: E402
 
 work = arg("work", "/tmp/linf_dask_check")
 MACRO = os.path.join(repo, "macros", "linf_opc.py")
 BUILD = os.path.join(repo, "build")
-TIMINGS = ("seconds", "elapsed", "time", "date")  # JSON keys that differ from run to run
 
 
 def free_port():
@@ -112,39 +111,6 @@ def run(cmd, out, extra=(), background=False):
         started.append(p)
         return p
     return subprocess.run(args, capture_output=True, text=True, env=env, timeout=1200)
-
-
-def untimed(v, ignore=()):
-    if isinstance(v, dict):
-        # In stats.json's coverage rows (they have W_s), T is the selection's run time (the
-        # thesis's T); elsewhere T is the gauge type and stays.
-        return {k: untimed(x, ignore) for k, x in v.items()
-                if not (k == "T" and "W_s" in v) and not any(t in k.lower() for t in TIMINGS) and k not in ignore}
-    if isinstance(v, list):
-        return [untimed(x, ignore) for x in v]
-    return v
-
-
-def same_files(ref, got, what, ignore=()):
-    names = sorted(os.listdir(ref))
-    expect(names == sorted(os.listdir(got)), "%s: the same files (%s against %s)"
-           % (what, names, sorted(os.listdir(got))))
-    compared = 0
-    for name in names:
-        a, b = os.path.join(ref, name), os.path.join(got, name)
-        if not os.path.isfile(b):
-            continue
-        if name.endswith(".json"):
-            with open(a) as f, open(b) as g:
-                same = untimed(json.load(f), ignore) == untimed(json.load(g), ignore)
-        elif name.endswith(".html"):  # the report states its run's timings
-            same = True
-        else:
-            with open(a, "rb") as f, open(b, "rb") as g:
-                same = f.read() == g.read()
-        compared += 1
-        expect(same, "%s: %s differs from the local run's" % (what, name))
-    expect(compared >= 3, "%s: %d files compared" % (what, compared))
 
 
 def ok(r, what):

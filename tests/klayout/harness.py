@@ -12,6 +12,7 @@ package) first on sys.path, so `from linf_opc import ...` follows it.
 Exit status: 1 if any expectation failed; else 77, which ctest reports as skipped
 (SKIP_RETURN_CODE), where an input the check needs is missing; else 0.
 """
+import json
 import os
 import sys
 
@@ -56,6 +57,45 @@ def batch(out, cmd, *settings, ok=True):
         print("FAIL: %s %s exited with %d" % (cmd, " ".join(settings), r.returncode))
         sys.exit(1)
     return r
+
+TIMINGS = ("seconds", "elapsed", "time", "date")  # JSON keys that differ from run to run
+
+
+def untimed(v, ignore=()):
+    """A JSON value without its timings (keys naming TIMINGS) and the keys in `ignore`."""
+    if isinstance(v, dict):
+        # In stats.json's coverage rows (they have W_s), T is the selection's run time (the
+        # thesis's T); elsewhere T is the gauge type and stays.
+        return {k: untimed(x, ignore) for k, x in v.items()
+                if not (k == "T" and "W_s" in v) and not any(t in k.lower() for t in TIMINGS) and k not in ignore}
+    if isinstance(v, list):
+        return [untimed(x, ignore) for x in v]
+    return v
+
+
+def same_files(ref, got, what, ignore=()):
+    """Expects the folders `ref` and `got` to hold the same files with the same bytes: JSON files
+    compared without their timings (untimed) and the keys in `ignore`, report.html not compared
+    (it states its run's timings)."""
+    names = sorted(os.listdir(ref))
+    expect(names == sorted(os.listdir(got)), "%s: the same files (%s against %s)"
+           % (what, names, sorted(os.listdir(got))))
+    compared = 0
+    for name in names:
+        a, b = os.path.join(ref, name), os.path.join(got, name)
+        if not os.path.isfile(b):
+            continue
+        if name.endswith(".json"):
+            with open(a) as f, open(b) as g:
+                same = untimed(json.load(f), ignore) == untimed(json.load(g), ignore)
+        elif name.endswith(".html"):  # the report states its run's timings
+            same = True
+        else:
+            with open(a, "rb") as f, open(b, "rb") as g:
+                same = f.read() == g.read()
+        compared += 1
+        expect(same, "%s: %s differs from the reference run's" % (what, name))
+    expect(compared >= 3, "%s: %d files compared" % (what, compared))
 
 
 def expect(cond, what):

@@ -1,0 +1,87 @@
+# The batch in plain Python (`python3 macros/linf_opc.py -rd ...`, on KLayout's standalone
+# modules: plugin/python/linf_opc/standalone.py) gives the files `klayout -b` gives.
+#   klayout -b -r tests/klayout/check_standalone.py -rd input=FILE -rd layer=L/D -rd markers=SPEC
+#           [-rd cell=NAME] -rd work=DIR
+# - voronoi, gauges, flow (with the markers, the plan's split) and farthest: the same files, byte
+#   for byte (JSON files without their timings; report.html not compared: it states them);
+# - a report's layout picture (klayout.lay, loaded on first use) is the same PNG as KLayout's;
+# - a name the commands do not read, a word that is not `-rd name=value`, and a Python without
+#   KLayout's modules each give exit 2, one line `linf_opc: error: ...`, and nothing written.
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from harness import arg, expect, finish, repo, same_files  # noqa: E402
+
+from linf_opc import picture  # noqa: E402
+
+work = arg("work", "/tmp/linf_standalone_check")
+MACRO = os.path.join(repo, "macros", "linf_opc.py")
+PYTHON = "/usr/bin/python3"  # the Python KLayout embeds (Debian's 3.11), for which the module is built
+
+
+def run(launcher, out, *settings):
+    shutil.rmtree(out, ignore_errors=True)
+    layer = ["input=" + arg("input"), "layer=" + arg("layer"), "out=" + out, "quiet=1"] + \
+        (["cell=" + arg("cell")] if arg("cell", None) else [])
+    start = ["klayout", "-b", "-r", MACRO] if launcher == "klayout" else [PYTHON, MACRO]
+    return subprocess.run(start + [a for s in layer + list(settings) for a in ("-rd", s)], capture_output=True,
+                          text=True, timeout=900)
+
+
+def ok(r, what):
+    return expect(r.returncode == 0, "%s exits %d: %s" % (what, r.returncode, (r.stderr or r.stdout).strip()[-400:]))
+
+
+def one_error_line(r, what, words, out):
+    lines = r.stderr.strip().splitlines()
+    expect(r.returncode == 2, "%s: exit %d, not 2" % (what, r.returncode))
+    expect(len(lines) == 1 and lines[0].startswith("linf_opc: error: ") and all(w in lines[0] for w in words),
+           "%s: one line naming %s, got %r" % (what, words, r.stderr.strip()))
+    expect(not os.path.exists(out) or not os.listdir(out), "%s: nothing written into %s" % (what, out))
+
+
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+commands = [("voronoi",), ("gauges",), ("flow", "markers=" + arg("markers")), ("farthest",)]
+for settings in commands:
+    cmd = settings[0]
+    ref, got = os.path.join(work, cmd + "_klayout"), os.path.join(work, cmd + "_python")
+    a = run("klayout", ref, "cmd=" + cmd, *settings[1:])
+    b = run("python", got, "cmd=" + cmd, *settings[1:])
+    if ok(a, cmd + " under klayout -b") and ok(b, cmd + " in plain Python"):
+        line_a, line_b = (re.sub(r"\b[0-9.]+ s\b", "_ s", r.stdout) for r in (a, b))  # its run time
+        expect(line_a.replace(ref, got) == line_b, "%s: the same summary line (%r against %r)"
+               % (cmd, a.stdout.strip(), b.stdout.strip()))
+        same_files(ref, got, cmd + " in plain Python")
+
+# The picture: KLayout's layout view, drawn in this process and by the standalone modules.
+shape = ([(0, 0), (1000, 0), (1000, 100), (700, 100), (700, 400), (0, 400)], [])
+args = (0.001, [(0, 0, 50, 50)], [(10, 10, 500, 90)])
+want = picture.picture([shape], *args)
+script = ("import sys; sys.path[:0] = [%r, %r]\n"
+          "from linf_opc import standalone; standalone.start()\n"
+          "from linf_opc import picture\n"
+          "sys.stdout.buffer.write(picture.picture([%r], *%r))\n"
+          % (os.path.join(repo, "plugin", "python"), os.path.join(repo, "build"), shape, args))
+r = subprocess.run([PYTHON, "-c", script], capture_output=True, timeout=300)
+expect(r.returncode == 0 and r.stdout[:8] == b"\x89PNG\r\n\x1a\n", "the picture in plain Python: exit %d, %r"
+       % (r.returncode, r.stderr.decode(errors="replace")[-400:]))
+expect(r.stdout == want, "the picture in plain Python is KLayout's (%d bytes against %d)" % (len(r.stdout), len(want)))
+expect(not r.stderr.strip(), "the picture in plain Python prints nothing on stderr: %r" % r.stderr[-400:])
+
+# What the plain-Python batch refuses.
+out = os.path.join(work, "refused")
+one_error_line(run("python", out, "cmd=flow", "budgt=10"), "a misspelt name", ["unknown argument -rd budgt"], out)
+r = subprocess.run([PYTHON, MACRO, "cmd=flow", "-rd", "out=" + out], capture_output=True, text=True, timeout=300)
+one_error_line(r, "a bare name=value", ["unexpected argument 'cmd=flow'", "-rd name=value"], out)
+plain = subprocess.run([PYTHON, "-c", "import klayout.db"], capture_output=True, env={"PATH": "/nonexistent"})
+if expect(plain.returncode != 0, "this machine's Python has no klayout module of its own (the next case needs it)"):
+    r = subprocess.run([PYTHON, MACRO, "-rd", "cmd=flow", "-rd", "out=" + out], capture_output=True, text=True,
+                       timeout=300, env={"PATH": "/nonexistent"})
+    one_error_line(r, "no KLayout on PATH", ["KLayout's Python modules", "apt-get install klayout"], out)
+
+finish("the batch in plain Python gives klayout -b's files")
