@@ -3,7 +3,8 @@
 #   klayout -b -r tests/klayout/check_standalone.py -rd input=FILE -rd layer=L/D -rd markers=SPEC
 #           [-rd cell=NAME] -rd work=DIR
 # - voronoi, gauges, flow (with the markers, the plan's split) and farthest: the same files, byte
-#   for byte (JSON files without their timings; report.html not compared: it states them);
+#   for byte (JSON files without their timings; report.html not compared: it states them), the
+#   flow also under the `python3` on PATH (the README's command);
 # - a report's layout picture (klayout.lay, loaded on first use) is the same PNG as KLayout's;
 # - a name the commands do not read, a word that is not `-rd name=value`, and a Python without
 #   KLayout's modules each give exit 2, one line `linf_opc: error: ...`, and nothing written.
@@ -24,10 +25,13 @@ PYTHON = "/usr/bin/python3"  # the Python KLayout embeds (Debian's 3.11), for wh
 
 
 def run(launcher, out, *settings):
+    """launcher: "klayout" (klayout -b -r), "python" (PYTHON) or "path" (the python3 on PATH, as
+    the README writes it: here perhaps another interpreter, pyenv's, which the macro leaves for
+    KLayout's own Python)."""
     shutil.rmtree(out, ignore_errors=True)
     layer = ["input=" + arg("input"), "layer=" + arg("layer"), "out=" + out, "quiet=1"] + \
         (["cell=" + arg("cell")] if arg("cell", None) else [])
-    start = ["klayout", "-b", "-r", MACRO] if launcher == "klayout" else [PYTHON, MACRO]
+    start = {"klayout": ["klayout", "-b", "-r"], "python": [PYTHON], "path": ["python3"]}[launcher] + [MACRO]
     return subprocess.run(start + [a for s in layer + list(settings) for a in ("-rd", s)], capture_output=True,
                           text=True, timeout=900)
 
@@ -46,17 +50,19 @@ def one_error_line(r, what, words, out):
 
 shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
-commands = [("voronoi",), ("gauges",), ("flow", "markers=" + arg("markers")), ("farthest",)]
-for settings in commands:
-    cmd = settings[0]
-    ref, got = os.path.join(work, cmd + "_klayout"), os.path.join(work, cmd + "_python")
-    a = run("klayout", ref, "cmd=" + cmd, *settings[1:])
-    b = run("python", got, "cmd=" + cmd, *settings[1:])
-    if ok(a, cmd + " under klayout -b") and ok(b, cmd + " in plain Python"):
+commands = [("voronoi", "python"), ("gauges", "python"), ("flow", "python", "markers=" + arg("markers")),
+            ("flow", "path", "markers=" + arg("markers")), ("farthest", "python")]
+for cmd, launcher, *settings in commands:
+    ref, got = os.path.join(work, cmd + "_klayout"), os.path.join(work, cmd + "_" + launcher)
+    what = "%s in plain Python (%s)" % (cmd, PYTHON if launcher == "python" else "python3 on PATH: %s"
+                                        % shutil.which("python3"))
+    a = run("klayout", ref, "cmd=" + cmd, *settings)
+    b = run(launcher, got, "cmd=" + cmd, *settings)
+    if ok(a, cmd + " under klayout -b") and ok(b, what):
         line_a, line_b = (re.sub(r"\b[0-9.]+ s\b", "_ s", r.stdout) for r in (a, b))  # its run time
         expect(line_a.replace(ref, got) == line_b, "%s: the same summary line (%r against %r)"
-               % (cmd, a.stdout.strip(), b.stdout.strip()))
-        same_files(ref, got, cmd + " in plain Python")
+               % (what, a.stdout.strip(), b.stdout.strip()))
+        same_files(ref, got, what)
 
 # The picture: KLayout's layout view, drawn in this process and by the standalone modules.
 shape = ([(0, 0), (1000, 0), (1000, 100), (700, 100), (700, 400), (0, 400)], [])
@@ -67,7 +73,10 @@ script = ("import sys; sys.path[:0] = [%r, %r]\n"
           "from linf_opc import picture\n"
           "sys.stdout.buffer.write(picture.picture([%r], *%r))\n"
           % (os.path.join(repo, "plugin", "python"), os.path.join(repo, "build"), shape, args))
-r = subprocess.run([PYTHON, "-c", script], capture_output=True, timeout=300)
+script_path = os.path.join(work, "picture.py")  # a file: the start may run the process again, with its argv
+with open(script_path, "w") as f:
+    f.write(script)
+r = subprocess.run([PYTHON, script_path], capture_output=True, timeout=300)
 expect(r.returncode == 0 and r.stdout[:8] == b"\x89PNG\r\n\x1a\n", "the picture in plain Python: exit %d, %r"
        % (r.returncode, r.stderr.decode(errors="replace")[-400:]))
 expect(r.stdout == want, "the picture in plain Python is KLayout's (%d bytes against %d)" % (len(r.stdout), len(want)))

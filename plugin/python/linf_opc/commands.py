@@ -1,7 +1,7 @@
 """The batch commands behind macros/linf_opc.py: which arguments each takes, which function
 (runs.py) runs it, and main().
 
-  klayout -b -r macros/linf_opc.py -rd cmd=COMMAND -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd out=DIR
+  python3 macros/linf_opc.py -rd cmd=COMMAND -rd input=FILE -rd layer=L/D [-rd cell=NAME] -rd out=DIR
            [-rd tile=UM|0|auto]  (the diagram builder's tiles; the same pieces for any size)
            [-rd builder=sweep|subdivision]  (sweep, the default: the sweep-line builder, on any layer; the
            subdivision builder, several times slower; the same pieces)

@@ -21,7 +21,7 @@ import types
 # Debian's package (/usr/bin/klayout, /usr/lib/klayout/pymod) and a build or Windows install
 # (pymod beside the program). `pip install klayout` puts them on Python's own path instead.
 _PYMOD_BESIDE = (os.path.join("..", "lib", "klayout", "pymod"), "pymod")
-# Set on the one re-execution that gives the loader KLayout's library folder (see _find).
+# Set on the one re-execution under KLayout's Python with its library folder (see _find).
 _REEXEC = "LINF_OPC_STANDALONE_REEXEC"
 
 NOT_FOUND = ("KLayout's Python modules (klayout.db) were not found: install KLayout (Debian: apt-get install "
@@ -49,48 +49,47 @@ def parse(argv, names):
     return args
 
 
-def _pymod_dirs():
-    """The folders, beside the `klayout` program on PATH, that hold a standalone `klayout`."""
+def _installation():
+    """(pymod, python) of the `klayout` program on PATH: the folder that holds its standalone
+    `klayout` package, and the Python it was built for (the `python3` beside the program, where
+    there is one: Debian's /usr/bin/python3, which KLayout embeds and the compiled module is built
+    for; else this one). None if there is no such folder."""
     program = shutil.which("klayout")
     if not program:
-        return []
+        return None
     home = os.path.dirname(os.path.realpath(program))
-    found = []
     for rel in _PYMOD_BESIDE:
-        d = os.path.normpath(os.path.join(home, rel))
-        if os.path.isdir(os.path.join(d, "klayout")):
-            found.append(d)
-    return found
+        pymod = os.path.normpath(os.path.join(home, rel))
+        if os.path.isdir(os.path.join(pymod, "klayout")):
+            python = os.path.join(os.path.dirname(program), "python3")
+            return pymod, python if os.access(python, os.X_OK) else sys.executable
+    return None
 
 
 def _find():
-    """Imports klayout.db, klayout.tl and klayout.rdb. Where Python's path lacks them, it takes
-    them from the KLayout installation on PATH; that one's shared libraries (libklayout_*.so) lie
-    in the folder above its pymod, which the loader only searches if LD_LIBRARY_PATH names it
-    when the process starts: the process is then run again, once, with it named."""
+    """Imports klayout.db, klayout.tl and klayout.rdb: from Python's own path (`pip install
+    klayout`), else from the KLayout installation on PATH. That one's shared libraries
+    (libklayout_*.so) lie in the folder above its pymod, which the loader only searches if
+    LD_LIBRARY_PATH names it when the process starts; and its modules, like KLayout's own Python,
+    are built for one Python (another on PATH, as pyenv's, may lack the system's packages, Dask
+    among them). So the process runs again, once, under that Python with that folder named."""
     try:
         import klayout.db  # noqa: F401
         return
     except ImportError:
-        pass
-    for pymod in _pymod_dirs():
-        libs = os.path.dirname(pymod)
-        sys.path.append(pymod)
-        try:
-            import klayout.db  # noqa: F401,F811
-            return
-        except ImportError:
-            sys.path.remove(pymod)
-            for name in [m for m in sys.modules if m == "klayout" or m.startswith("klayout.")]:
-                del sys.modules[name]
-        paths = [p for p in os.environ.get("LD_LIBRARY_PATH", "").split(os.pathsep) if p]
-        if libs not in paths and not os.environ.get(_REEXEC):
-            env = dict(os.environ, LD_LIBRARY_PATH=os.pathsep.join([libs] + paths), **{_REEXEC: "1"})
-            env["PYTHONPATH"] = os.pathsep.join([pymod] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
-            sys.stdout.flush()
-            sys.stderr.flush()
-            os.execve(sys.executable, [sys.executable] + sys.argv, env)
-    raise StartError(NOT_FOUND)
+        if os.environ.get(_REEXEC):  # already run again: the installation's modules do not load
+            raise StartError(NOT_FOUND)
+    found = _installation()
+    if found is None:
+        raise StartError(NOT_FOUND)
+    pymod, python = found
+    libs = os.path.dirname(pymod)
+    env = dict(os.environ, **{_REEXEC: "1"})
+    for var, first in (("LD_LIBRARY_PATH", libs), ("PYTHONPATH", pymod)):
+        env[var] = os.pathsep.join([first] + [p for p in env.get(var, "").split(os.pathsep) if p and p != first])
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os.execve(python, [python] + sys.argv, env)
 
 
 def _pya():
