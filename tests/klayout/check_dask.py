@@ -1,6 +1,6 @@
 # The diagram's tiles on a Dask cluster (-rd scheduler=...) give the local run's files.
 #   klayout -b -r tests/klayout/check_dask.py -rd input=FILE -rd layer=L/D -rd markers=SPEC [-rd cell=NAME]
-#           -rd work=DIR [-rd parts=4] [-rd kill=1] [-rd kill_parts=32] [-rd faults=1] [-rd editor=1]
+#           -rd work=DIR [-rd parts=4] [-rd kill=1] [-rd kill_parts=32] [-rd faults=1] [-rd editor=1] [-rd plain=1]
 # Starts a dask-scheduler on 127.0.0.1 (a free port) and two dask-workers (--nthreads 1, only the
 # build's core module on their PYTHONPATH), runs cmd=gauges and cmd=flow locally and on the
 # cluster with tiles of the layer's extent / parts, and compares every output file byte for byte
@@ -13,6 +13,7 @@
 # pairs (drawn from a sample of each tile's clearances).
 # faults=1: an unreachable scheduler gives one error line, exit 2, within 10 s and nothing
 # written; a worker without the core module gives an error naming it.
+# plain=1: gauges and flow also from plain Python (python3 macros/linf_opc.py), the same files.
 # editor=1: the editor's path (the core in its worker process, which connects to the cluster)
 # writes the same voronoi.csv; an unreachable scheduler is a UsageError there.
 # Every process started here is stopped (finally).
@@ -97,8 +98,11 @@ def cluster(name, workers, pythonpath):
     return address, procs
 
 
-def run(cmd, out, extra=(), background=False):
-    args = ["klayout", "-b", "-r", MACRO, "-rd", "cmd=" + cmd, "-rd", "input=" + arg("input"), "-rd",
+def run(cmd, out, extra=(), background=False, launcher="klayout"):
+    """launcher: "klayout" (klayout -b -r) or "python3" (the python3 on PATH: the README's command,
+    which runs the macro again under KLayout's own Python, the one with Dask)."""
+    start = ["klayout", "-b", "-r"] if launcher == "klayout" else ["python3"]
+    args = start + [MACRO, "-rd", "cmd=" + cmd, "-rd", "input=" + arg("input"), "-rd",
             "layer=" + arg("layer"), "-rd", "out=" + out, "-rd", "quiet=1"] + list(extra)
     if cmd == "flow":
         args += ["-rd", "markers=" + arg("markers"), "-rd", "all_gauges=1", "-rd", "diagram=1"]
@@ -144,6 +148,11 @@ try:
         tiles = (summary["voronoi"] if cmd == "flow" else summary["diagram"])["tiles"]
         expect(tiles["tiles"] > 1, "%s: tile=%s um cuts the layer into %d tiles" % (cmd, tile, tiles["tiles"]))
         same_files(ref, got, cmd + " on the cluster")
+        if arg("plain", "0") == "1":  # the batch in plain Python sends its tiles as well
+            plain = got + "_python3"
+            r = run(cmd, plain, ["-rd", "tile=" + tile, "-rd", "scheduler=" + address], launcher="python3")
+            ok(r, cmd + " on the cluster from plain Python")
+            same_files(ref, plain, cmd + " on the cluster from plain Python")
 
     if arg("editor", "0") == "1":
         # The editor's path: the core call in its watched worker process (worker.py), which
