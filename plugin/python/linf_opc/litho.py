@@ -14,6 +14,7 @@ Rules and their reasons: docs/design.md, "Printability in the flow".
 import os
 import time
 from array import array
+from concurrent.futures import ThreadPoolExecutor
 
 from . import core
 from . import selection as selection_stage
@@ -65,8 +66,11 @@ def model_of(args):
         return None
     if text in DEFOCUS_NM:
         try:
-            focus = core.litho_kernels(preset=text)
-            blurred = core.litho_kernels(preset=text, defocus=DEFOCUS_NM[text])
+            # Two independent eigen-decompositions: on two threads (the core lets go of Python's lock).
+            with ThreadPoolExecutor(2) as pool:
+                blurred_job = pool.submit(core.litho_kernels, preset=text, defocus=DEFOCUS_NM[text])
+                focus = core.litho_kernels(preset=text)
+                blurred = blurred_job.result()
         except ValueError as e:
             raise UsageError("litho=%s: %s" % (text, e))
         return Model(text, focus, blurred, DEFOCUS_NM[text], "preset")
@@ -125,12 +129,9 @@ class LithoColumns:
 
 def _fits(reals, n, half):
     """1 where the gauge's measurement line fits in the model's window centred on its point."""
-    out = bytearray(n)
-    for i in range(n):
-        r = reals[10 * i:10 * i + 6]
-        cx, cy = r[4], r[5]
-        out[i] = max(abs(r[0] - cx), abs(r[2] - cx), abs(r[1] - cy), abs(r[3] - cy)) <= half
-    return out
+    x1, y1, x2, y2, cx, cy = (reals[k:10 * n:10] for k in range(6))
+    return bytearray(max(abs(a - c), abs(b - c), abs(p - d), abs(q - d)) <= half
+                     for a, b, c, p, q, d in zip(x1, x2, cx, y1, y2, cy))
 
 
 def rescore(result, polygons, dbu_um, model, threads=0):
@@ -157,13 +158,15 @@ def rescore(result, polygons, dbu_um, model, threads=0):
     half = P / dbu_nm / 2 - 1  # a unit to spare for the window's rounding to the half DBU
     fits = _fits(reals, n, half)
     idx = array("i", (i for i in range(n) if fits[i]))
-    col = lambda k: array("d", (reals[10 * i + k] for i in idx))  # noqa: E731
-    types = array("i", (ints[13 * i + 12] for i in idx))
+    every = len(idx) == n  # the usual case: each column is a strided view of the table's
+
+    def col(k, width=10, of=None, code="d"):
+        v = (reals if of is None else of)[k:width * n:width]
+        return array(code, v) if every else array(code, (v[i] for i in idx))
+    types = col(12, 13, ints, "i")
     flat = core_input(polygons)
-    pts = array("d")
-    for i in idx:
-        pts.append(reals[10 * i + 4])
-        pts.append(reals[10 * i + 5])
+    pts = array("d", bytes(16 * len(idx)))
+    pts[0::2], pts[1::2] = col(4), col(5)
     # One simulation a type and context: the layer within half the window of the point, up to
     # the square's symmetries (contexts.py); a repeated context costs nothing more.
     ids = array("Q")
@@ -193,20 +196,18 @@ def rescore(result, polygons, dbu_um, model, threads=0):
     # The table holds scores in DBU (every writer multiplies by the DBU): the ratio is held
     # divided by it, so that files and reports show the ratio itself.
     highest = max(score) if n else 1.0
-    new_reals, new_ints = array("d", bytes(80 * n)), array("i", bytes(52 * n))
-    geo = array("d", bytes(8 * n))
-    p_cd, p_band, p_fail = array("d", bytes(8 * n)), array("d", bytes(8 * n)), array("B", bytes(n))
-    for row, i in enumerate(order):
-        rr = reals[10 * i:10 * i + 10]
-        geo[row] = rr[7]
-        rr = list(rr)
-        rr[7] = score[i] / dbu_um
-        rr[8] = score[i] / highest if highest > 0 else 0.0
-        new_reals[10 * row:10 * row + 10] = array("d", rr)
-        ii = list(ints[13 * i:13 * i + 13])
-        ii[0] = row + 1
-        new_ints[13 * row:13 * row + 13] = array("i", ii)
-        p_cd[row], p_band[row], p_fail[row] = pcd[i], pvb[i], fl[i]
+    # Whole records moved in the new order, then the changed columns written over (a Python loop
+    # over every field of 83,458 rows took a third of a second).
+    rbytes, ibytes = reals.cast("B"), ints.cast("B")
+    new_reals, new_ints = array("d"), array("i")
+    new_reals.frombytes(b"".join(rbytes[80 * i:80 * i + 80] for i in order))
+    new_ints.frombytes(b"".join(ibytes[52 * i:52 * i + 52] for i in order))
+    geo = new_reals[7::10]
+    new_reals[7::10] = array("d", (score[i] / dbu_um for i in order))
+    new_reals[8::10] = array("d", (score[i] / highest if highest > 0 else 0.0 for i in order))
+    new_ints[0::13] = array("i", range(1, n + 1))
+    p_cd, p_band = array("d", (pcd[i] for i in order)), array("d", (pvb[i] for i in order))
+    p_fail = array("B", (fl[i] for i in order))
     paths = None
     if table._paths is not None:
         paths = [table._paths[i] for i in order]
