@@ -6,8 +6,9 @@
 #   for byte (JSON files without their timings; report.html not compared: it states them), the
 #   flow also under the `python3` on PATH (the README's command);
 # - a report's layout picture (klayout.lay, loaded on first use) is the same PNG as KLayout's;
-# - a name the commands do not read, a word that is not `-rd name=value`, and a Python without
-#   KLayout's modules each give exit 2, one line `linf_opc: error: ...`, and nothing written.
+# - a name the commands do not read, a word that is not `-rd name=value`, a memory limit too small
+#   for KLayout's libraries, and a Python without KLayout's modules each give exit 2, one line
+#   `linf_opc: error: ...`, and nothing written.
 import os
 import re
 import shutil
@@ -87,6 +88,14 @@ out = os.path.join(work, "refused")
 one_error_line(run("python", out, "cmd=flow", "budgt=10"), "a misspelt name", ["unknown argument -rd budgt"], out)
 r = subprocess.run([PYTHON, MACRO, "cmd=flow", "-rd", "out=" + out], capture_output=True, text=True, timeout=300)
 one_error_line(r, "a bare name=value", ["unexpected argument 'cmd=flow'", "-rd name=value"], out)
+def limited():  # the address space of a machine far too small: KLayout's libraries do not fit
+    import resource
+    resource.setrlimit(resource.RLIMIT_AS, (60 << 20, 60 << 20))
+
+
+r = subprocess.run([PYTHON, MACRO, "-rd", "cmd=flow", "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"),
+                    "-rd", "out=" + out], capture_output=True, text=True, timeout=300, preexec_fn=limited)
+one_error_line(r, "a 60 MB memory limit", ["out of memory while starting"], out)
 plain = subprocess.run([PYTHON, "-c", "import klayout.db"], capture_output=True, env={"PATH": "/nonexistent"})
 if expect(plain.returncode != 0, "this machine's Python has no klayout module of its own (the next case needs it)"):
     r = subprocess.run([PYTHON, MACRO, "-rd", "cmd=flow", "-rd", "out=" + out], capture_output=True, text=True,

@@ -24,6 +24,9 @@ _PYMOD_BESIDE = (os.path.join("..", "lib", "klayout", "pymod"), "pymod")
 # Set on the one re-execution under KLayout's Python with its library folder (see _find).
 _REEXEC = "LINF_OPC_STANDALONE_REEXEC"
 
+# The loader's words for a shared library that a memory limit (ulimit -v) left no room to map.
+_MEMORY = "failed to map segment"
+
 NOT_FOUND = ("KLayout's Python modules (klayout.db) were not found: install KLayout (Debian: apt-get install "
              "klayout; elsewhere: pip install klayout), or run the batch as klayout -b -r macros/linf_opc.py ...")
 
@@ -76,7 +79,9 @@ def _find():
     try:
         import klayout.db  # noqa: F401
         return
-    except ImportError:
+    except ImportError as e:
+        if _MEMORY in str(e):  # found, but a memory limit left no room to load it: the macro says so
+            raise
         if os.environ.get(_REEXEC):  # already run again: the installation's modules do not load
             raise StartError(NOT_FOUND)
     found = _installation()
