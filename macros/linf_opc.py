@@ -46,6 +46,9 @@ _reserve = None
 
 if _in_klayout:  # the -rd arguments are the script's global variables
     _args = {k: globals().get(k) for k in commands.ARGUMENTS}
+elif sys.argv[1:] in (["-h"], ["--help"]):
+    sys.stdout.write("usage:\n" + commands.__doc__.split("\n\n", 1)[1])  # the docstring past its opening
+    sys.exit(0)
 else:
     try:
         _args = standalone.parse(sys.argv[1:], commands.ARGUMENTS)

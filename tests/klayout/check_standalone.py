@@ -6,6 +6,7 @@
 #   for byte (JSON files without their timings; report.html not compared: it states them), the
 #   flow also under the `python3` on PATH (the README's command);
 # - a report's layout picture (klayout.lay, loaded on first use) is the same PNG as KLayout's;
+# - --help prints the commands' usage;
 # - a name the commands do not read, a word that is not `-rd name=value`, a memory limit too small
 #   for KLayout's libraries, and a Python without KLayout's modules each give exit 2, one line
 #   `linf_opc: error: ...`, and nothing written.
@@ -82,6 +83,10 @@ expect(r.returncode == 0 and r.stdout[:8] == b"\x89PNG\r\n\x1a\n", "the picture 
        % (r.returncode, r.stderr.decode(errors="replace")[-400:]))
 expect(r.stdout == want, "the picture in plain Python is KLayout's (%d bytes against %d)" % (len(r.stdout), len(want)))
 expect(not r.stderr.strip(), "the picture in plain Python prints nothing on stderr: %r" % r.stderr[-400:])
+
+r = subprocess.run([PYTHON, MACRO, "--help"], capture_output=True, text=True, timeout=300)
+expect(r.returncode == 0 and "python3 macros/linf_opc.py -rd cmd=COMMAND" in r.stdout and "farthest" in r.stdout,
+       "--help prints the commands' usage, exit 0 (exit %d, %r)" % (r.returncode, r.stdout[:200]))
 
 # What the plain-Python batch refuses.
 out = os.path.join(work, "refused")
