@@ -2,7 +2,7 @@
 #   python3 macros/linf_opc.py -rd cmd=voronoi|gauges|select|split|flow|farthest -rd input=FILE -rd layer=L/D
 #           [-rd cell=NAME] -rd out=DIR ...   (arguments per command: plugin/python/linf_opc/commands.py)
 # or the same arguments after `klayout -b -r macros/linf_opc.py`: the same files. In plain Python it
-# runs on KLayout's standalone modules (plugin/python/linf_opc/standalone.py) and starts 1.5 s sooner.
+# runs on KLayout's standalone modules (plugin/python/linf_opc/standalone.py) and starts about 1.8 s sooner.
 # Run from a checkout it uses the checkout's sources and build; otherwise the installed package.
 import os
 import sys
