@@ -42,6 +42,12 @@ def ok(r, what):
     return expect(r.returncode == 0, "%s exits %d: %s" % (what, r.returncode, (r.stderr or r.stdout).strip()[-400:]))
 
 
+def limited():
+    """The address space of a machine far too small: KLayout's libraries do not fit."""
+    import resource
+    resource.setrlimit(resource.RLIMIT_AS, (60 << 20, 60 << 20))
+
+
 def one_error_line(r, what, words, out):
     lines = r.stderr.strip().splitlines()
     expect(r.returncode == 2, "%s: exit %d, not 2" % (what, r.returncode))
@@ -54,11 +60,14 @@ shutil.rmtree(work, ignore_errors=True)
 os.makedirs(work)
 commands = [("voronoi", "python"), ("gauges", "python"), ("flow", "python", "markers=" + arg("markers")),
             ("flow", "path", "markers=" + arg("markers")), ("farthest", "python")]
+references = {}  # cmd: klayout -b's run, into work/CMD_klayout
 for cmd, launcher, *settings in commands:
     ref, got = os.path.join(work, cmd + "_klayout"), os.path.join(work, cmd + "_" + launcher)
     what = "%s in plain Python (%s)" % (cmd, PYTHON if launcher == "python" else "python3 on PATH: %s"
                                         % shutil.which("python3"))
-    a = run("klayout", ref, "cmd=" + cmd, *settings)
+    if cmd not in references:
+        references[cmd] = run("klayout", ref, "cmd=" + cmd, *settings)
+    a = references[cmd]
     b = run(launcher, got, "cmd=" + cmd, *settings)
     if ok(a, cmd + " under klayout -b") and ok(b, what):
         line_a, line_b = (re.sub(r"\b[0-9.]+ s\b", "_ s", r.stdout) for r in (a, b))  # its run time
@@ -93,11 +102,6 @@ out = os.path.join(work, "refused")
 one_error_line(run("python", out, "cmd=flow", "budgt=10"), "a misspelt name", ["unknown argument -rd budgt"], out)
 r = subprocess.run([PYTHON, MACRO, "cmd=flow", "-rd", "out=" + out], capture_output=True, text=True, timeout=300)
 one_error_line(r, "a bare name=value", ["unexpected argument 'cmd=flow'", "-rd name=value"], out)
-def limited():  # the address space of a machine far too small: KLayout's libraries do not fit
-    import resource
-    resource.setrlimit(resource.RLIMIT_AS, (60 << 20, 60 << 20))
-
-
 r = subprocess.run([PYTHON, MACRO, "-rd", "cmd=flow", "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"),
                     "-rd", "out=" + out], capture_output=True, text=True, timeout=300, preexec_fn=limited)
 one_error_line(r, "a 60 MB memory limit", ["out of memory while starting"], out)
