@@ -11,7 +11,7 @@ import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness  # noqa: E402
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import BATCH, arg, expect, finish, repo  # noqa: E402
 
 harness.report_ok = True  # the list of inputs and what each gives, read as a whole
 work = arg("work", "/tmp/linf_bad_input")
@@ -20,7 +20,7 @@ os.makedirs(work, exist_ok=True)
 
 def run(*args):
     args = list(args) + (["cell=TOP"] if any(a.endswith("awkward.oas") for a in args) else [])
-    r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] +
+    r = subprocess.run(BATCH +
                        [x for a in args for x in ("-rd", a)], capture_output=True, text=True)
     return r.returncode, (r.stdout + r.stderr).strip()
 

@@ -20,14 +20,14 @@ import sys
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import BATCH, arg, expect, finish, repo  # noqa: E402
 
 work = arg("work", "/tmp/linf_check")
 args = ["-rd", "cmd=voronoi", "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"), "-rd", "out=" + work]
 if arg("cell", None):
     args += ["-rd", "cell=" + arg("cell")]
 
-run = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args,
+run = subprocess.run(BATCH + args,
                      capture_output=True, text=True)
 print(run.stdout.strip())
 if run.returncode != 0:
@@ -126,7 +126,7 @@ expect(bad == 0, "%d clearance failures in %d sampled pieces" % (bad, len(sample
 searched = summary["check"]["searched_pieces"]
 if len(rows) >= 1000:
     expect(len(rows) / 64 < searched < len(rows) / 4, "sampled check searched %d of %d pieces" % (searched, len(rows)))
-full = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] +
+full = subprocess.run(BATCH +
                       [a.replace("out=" + work, "out=" + work + "_full") for a in args] + ["-rd", "check=full"],
                       capture_output=True, text=True)
 expect(full.returncode == 0, "check=full exit %d: %s" % (full.returncode, full.stderr.strip()))
@@ -136,7 +136,7 @@ if full.returncode == 0:
            "check=full searched %d of %d pieces" % (fs["check"]["searched_pieces"], fs["pieces"]))
     expect(open(os.path.join(work + "_full", "voronoi.csv"), "rb").read() ==
            open(os.path.join(work, "voronoi.csv"), "rb").read(), "check=full: the same voronoi.csv")
-bogus = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] +
+bogus = subprocess.run(BATCH +
                        [a.replace("out=" + work, "out=" + work + "_bogus") for a in args] + ["-rd", "check=some"],
                        capture_output=True, text=True)
 expect(bogus.returncode == 2 and "check must be sample or full" in bogus.stderr and

@@ -19,14 +19,14 @@ import sys
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import BATCH, arg, expect, finish, repo  # noqa: E402
 
 work = arg("work", "/tmp/linf_farthest_check")
 args = ["-rd", "cmd=farthest", "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"), "-rd", "out=" + work]
 for k in ("cell", "box"):
     if arg(k, None):
         args += ["-rd", "%s=%s" % (k, arg(k))]
-r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args,
+r = subprocess.run(BATCH + args,
                    capture_output=True, text=True)
 print(r.stdout.strip())
 if r.returncode != 0:

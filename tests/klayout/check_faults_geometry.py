@@ -18,7 +18,7 @@ import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import harness  # noqa: E402
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import BATCH, arg, expect, finish, repo  # noqa: E402
 
 harness.report_ok = True  # the rows and what each gives, read as a whole
 group = arg("group")
@@ -37,7 +37,7 @@ def run(cmd, path, layer, out, *extra):
     """exit code, stdout + stderr of one batch command (quiet: a refusal is exactly one line)."""
     args = ["cmd=" + cmd, "input=" + path, "layer=" + layer, "out=" + out, "quiet=1"] + list(extra)
     t0 = time.time()
-    r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] +
+    r = subprocess.run(BATCH +
                        [x for a in args for x in ("-rd", a)], capture_output=True, text=True)
     print("      (%s %s %s: exit %d, %.1f s)" % (cmd, os.path.basename(path), layer, r.returncode, time.time() - t0))
     return r.returncode, (r.stdout + r.stderr).strip()

@@ -42,7 +42,7 @@ from collections import Counter
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import BATCH, arg, expect, finish, repo  # noqa: E402
 
 work = arg("work", "/tmp/linf_flow_check")
 TYPES = ["internal", "external", "sandwich", "comb", "T"]
@@ -68,7 +68,7 @@ def flow(out, *more):
             "-rd", "markers=" + arg("markers"), "-rd", "out=" + out]
     if arg("cell", None):
         args += ["-rd", "cell=" + arg("cell")]
-    return subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args +
+    return subprocess.run(BATCH + args +
                           [x for m in more for x in ("-rd", m)], capture_output=True, text=True)
 
 

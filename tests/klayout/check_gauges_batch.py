@@ -20,7 +20,7 @@ import sys
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import BATCH, arg, expect, finish, repo  # noqa: E402
 
 work = arg("work", "/tmp/linf_gauges_check")
 TYPES = ["internal", "external", "sandwich", "comb", "T"]
@@ -30,7 +30,7 @@ def run(out, extra=()):
     args = ["-rd", "cmd=gauges", "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"), "-rd", "out=" + out]
     if arg("cell", None):
         args += ["-rd", "cell=" + arg("cell")]
-    r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args + list(extra),
+    r = subprocess.run(BATCH + args + list(extra),
                        capture_output=True, text=True)
     print(r.stdout.strip())
     if r.returncode != 0:

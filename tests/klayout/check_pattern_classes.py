@@ -13,7 +13,7 @@ import sys
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import BATCH, arg, expect, finish, repo  # noqa: E402
 
 inp, layer, markers, work = arg("input"), arg("layer"), arg("markers"), arg("work")
 fraction = float(arg("class_area", "0.05"))
@@ -21,7 +21,7 @@ shutil.rmtree(work, ignore_errors=True)
 
 
 def run(out, *extra):
-    cmd = ["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py"), "-rd", "cmd=select", "-rd", "input=" + inp,
+    cmd = BATCH + ["-rd", "cmd=select", "-rd", "input=" + inp,
            "-rd", "layer=" + layer, "-rd", "markers=" + markers, "-rd", "out=" + out, "-rd", "quiet=1"]
     for e in extra:
         cmd += ["-rd", e]

@@ -22,7 +22,7 @@ import sys
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import BATCH, arg, expect, finish, repo  # noqa: E402
 
 work = arg("work", "/tmp/linf_select_check")
 
@@ -31,7 +31,7 @@ def run(cmd, extra=()):
     args = ["-rd", "cmd=" + cmd, "-rd", "input=" + arg("input"), "-rd", "layer=" + arg("layer"), "-rd", "out=" + work]
     if arg("cell", None):
         args += ["-rd", "cell=" + arg("cell")]
-    r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args + list(extra),
+    r = subprocess.run(BATCH + args + list(extra),
                        capture_output=True, text=True)
     print(r.stdout.strip())
     if r.returncode != 0:

@@ -20,7 +20,7 @@ import sys
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import BATCH, arg, expect, finish, repo  # noqa: E402
 
 work = arg("work", "/tmp/linf_split_check")
 mode = arg("split", "stratified")
@@ -31,7 +31,7 @@ def run(out):
             "-rd", "markers=" + arg("markers"), "-rd", "split=" + mode, "-rd", "halves=0"]
     if arg("cell", None):
         args += ["-rd", "cell=" + arg("cell")]
-    r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args,
+    r = subprocess.run(BATCH + args,
                        capture_output=True, text=True)
     print(r.stdout.strip())
     if r.returncode != 0:

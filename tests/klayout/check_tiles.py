@@ -16,7 +16,7 @@ import sys
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo  # noqa: E402
+from harness import BATCH, arg, expect, finish, repo  # noqa: E402
 
 work = arg("work", "/tmp/linf_tiles_check")
 FILES = ["voronoi.csv", "gauges.csv", "windows.csv", "calibration_gauges.csv", "verification_gauges.csv"]
@@ -28,7 +28,7 @@ def flow(tile, out, builder="subdivision"):
             "-rd", "all_gauges=1", "-rd", "diagram=1", "-rd", "builder=" + builder]
     if arg("cell", None):
         args += ["-rd", "cell=" + arg("cell")]
-    r = subprocess.run(["klayout", "-b", "-r", os.path.join(repo, "macros", "linf_opc.py")] + args,
+    r = subprocess.run(BATCH + args,
                        capture_output=True, text=True)
     print("tile=%s: %s" % (tile, r.stdout.strip() or r.stderr.strip()))
     expect(r.returncode == 0, "flow with tile=%s exits %d" % (tile, r.returncode))
