@@ -30,7 +30,7 @@ import time
 import pya
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo, same_files  # noqa: E402
+from harness import BATCH, arg, expect, finish, ok, repo, same_files  # noqa: E402
 
 work = arg("work", "/tmp/linf_dask_check")
 MACRO = os.path.join(repo, "macros", "linf_opc.py")
@@ -99,10 +99,10 @@ def cluster(name, workers, pythonpath):
 
 
 def run(cmd, out, extra=(), background=False, launcher="klayout"):
-    """launcher: "klayout" (klayout -b -r) or "python3" (the python3 on PATH: the README's command,
-    which runs the macro again under KLayout's own Python, the one with Dask)."""
-    start = ["klayout", "-b", "-r"] if launcher == "klayout" else ["python3"]
-    args = start + [MACRO, "-rd", "cmd=" + cmd, "-rd", "input=" + arg("input"), "-rd",
+    """launcher: "klayout" (klayout -b -r) or "python3" (BATCH: the README's command, which runs the
+    macro again under KLayout's own Python, the one with Dask)."""
+    start = ["klayout", "-b", "-r", MACRO] if launcher == "klayout" else BATCH
+    args = start + ["-rd", "cmd=" + cmd, "-rd", "input=" + arg("input"), "-rd",
             "layer=" + arg("layer"), "-rd", "out=" + out, "-rd", "quiet=1"] + list(extra)
     if cmd == "flow":
         args += ["-rd", "markers=" + arg("markers"), "-rd", "all_gauges=1", "-rd", "diagram=1"]
@@ -115,10 +115,6 @@ def run(cmd, out, extra=(), background=False, launcher="klayout"):
         started.append(p)
         return p
     return subprocess.run(args, capture_output=True, text=True, env=env, timeout=1200)
-
-
-def ok(r, what):
-    expect(r.returncode == 0, "%s exits %d: %s" % (what, r.returncode, (r.stderr or r.stdout).strip()[-400:]))
 
 
 ly = pya.Layout()

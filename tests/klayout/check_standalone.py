@@ -17,7 +17,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from harness import arg, expect, finish, repo, same_files  # noqa: E402
+from harness import BATCH, arg, expect, finish, ok, repo, same_files  # noqa: E402
 
 from linf_opc import picture  # noqa: E402
 
@@ -27,19 +27,15 @@ PYTHON = "/usr/bin/python3"  # the Python KLayout embeds (Debian's 3.11), for wh
 
 
 def run(launcher, out, *settings):
-    """launcher: "klayout" (klayout -b -r), "python" (PYTHON) or "path" (the python3 on PATH, as
-    the README writes it: here perhaps another interpreter, pyenv's, which the macro leaves for
+    """launcher: "klayout" (klayout -b -r), "python" (PYTHON) or "path" (BATCH: the python3 on PATH,
+    as the README writes it: here perhaps another interpreter, pyenv's, which the macro leaves for
     KLayout's own Python)."""
     shutil.rmtree(out, ignore_errors=True)
     layer = ["input=" + arg("input"), "layer=" + arg("layer"), "out=" + out, "quiet=1"] + \
         (["cell=" + arg("cell")] if arg("cell", None) else [])
-    start = {"klayout": ["klayout", "-b", "-r"], "python": [PYTHON], "path": ["python3"]}[launcher] + [MACRO]
+    start = {"klayout": ["klayout", "-b", "-r", MACRO], "python": [PYTHON, MACRO], "path": BATCH}[launcher]
     return subprocess.run(start + [a for s in layer + list(settings) for a in ("-rd", s)], capture_output=True,
                           text=True, timeout=900)
-
-
-def ok(r, what):
-    return expect(r.returncode == 0, "%s exits %d: %s" % (what, r.returncode, (r.stderr or r.stdout).strip()[-400:]))
 
 
 def limited():

@@ -103,6 +103,11 @@ def same_files(ref, got, what, ignore=()):
     expect(compared >= 3, "%s: %d files compared" % (what, compared))
 
 
+def ok(r, what):
+    """Expects the completed process `r` to have exited 0; the end of its output where not."""
+    return expect(r.returncode == 0, "%s exits %d: %s" % (what, r.returncode, (r.stderr or r.stdout).strip()[-400:]))
+
+
 def expect(cond, what):
     """Records a failed expectation (the script goes on, to report them all) and prints it."""
     if not cond:
