@@ -34,12 +34,8 @@ def contours_of(values, m, lo, hi, level):
         t = (level - v1) / (v2 - v1)
         return (i1 + t * (i2 - i1), j1 + t * (j2 - j1))
 
-    above = bytes(v >= level for v in values)
     for j in range(lo, hi - 1):
         for i in range(lo, hi - 1):
-            k0, k1 = j * m + i, (j + 1) * m + i
-            if above[k0] == above[k0 + 1] == above[k1] == above[k1 + 1]:  # most cells: no crossing
-                continue
             c = ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1))
             v = [at(*p) for p in c]
             pts = []
