@@ -4,6 +4,7 @@
 #include <fftw3.h>
 
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <utility>
@@ -195,92 +196,169 @@ LineKernels::LineKernels(const Kernels& kernels) : kernels_(&kernels), n_(std::s
     lo_[axis].assign(n, n);
     hi_[axis].assign(n, 0);
     for (std::size_t i = 0; i < count; ++i)
-      for (std::size_t b = 0; b < n; ++b)
-        for (std::size_t a = 0; a < n; ++a) {
+      for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t b = 0; b < n; ++b) {
           // values[i][r * n + c] is frequency (r - h, c - h): along x, a is r; along y, a is c.
           const cd v = kernels.values[i][axis == 0 ? a * n + b : b * n + a];
-          re_[axis][(i * n + b) * n + a] = v.real();
-          im_[axis][(i * n + b) * n + a] = v.imag();
-          if (v != cd(0)) lo_[axis][b] = std::min(lo_[axis][b], a), hi_[axis][b] = std::max(hi_[axis][b], a + 1);
+          re_[axis][(i * n + a) * n + b] = v.real();
+          im_[axis][(i * n + a) * n + b] = v.imag();
+          if (v != cd(0)) lo_[axis][a] = std::min(lo_[axis][a], b), hi_[axis][a] = std::max(hi_[axis][a], b + 1);
         }
   }
 }
 
 namespace {
 
-// acc[a] += k[a] m[a] over a in [lo, hi), complex in parts: elementwise, so vectorised without
-// reordering a sum (the same bits from every clone).
-__attribute__((target_clones("avx2", "default"))) void multiply_add(const double* kr, const double* ki,
-                                                                     const double* mr, const double* mi, double* ar,
-                                                                     double* ai, std::size_t lo, std::size_t hi) {
-  for (std::size_t a = lo; a < hi; ++a) {
-    ar[a] += kr[a] * mr[a] - ki[a] * mi[a];
-    ai[a] += kr[a] * mi[a] + ki[a] * mr[a];
+// Lines are profiled kLanes at a time: the sums below run over them side by side.
+constexpr std::size_t kLanes = 8;
+
+// s_j = sum over b in [lo, hi) of k[b] m_j[b] for kLanes lines j, complex in parts, m_j[b] at
+// m[b * kLanes + j]: one kernel value serves all the lines from a register, the partial sums
+// stay in registers, and each line's sum is taken in the order of b, whatever the clone
+// (products and sums apart, never fused, so the same bits from every clone).
+using Quad = double __attribute__((vector_size(4 * sizeof(double))));
+
+__attribute__((target_clones("avx2", "default"))) void dot_lanes(const double* kr, const double* ki,
+                                                                  const double* mr, const double* mi, std::size_t lo,
+                                                                  std::size_t hi, double* sr, double* si) {
+  static_assert(kLanes == 8, "two quads of lanes");
+  Quad ar0 = {}, ar1 = {}, ai0 = {}, ai1 = {};
+  for (std::size_t b = lo; b < hi; ++b) {
+    const double r = kr[b], q = ki[b];
+    Quad vr0, vr1, vi0, vi1;
+    std::memcpy(&vr0, mr + b * kLanes, sizeof vr0);
+    std::memcpy(&vr1, mr + b * kLanes + 4, sizeof vr1);
+    std::memcpy(&vi0, mi + b * kLanes, sizeof vi0);
+    std::memcpy(&vi1, mi + b * kLanes + 4, sizeof vi1);
+    ar0 += r * vr0 - q * vi0;
+    ar1 += r * vr1 - q * vi1;
+    ai0 += r * vi0 + q * vr0;
+    ai1 += r * vi1 + q * vr1;
   }
+  std::memcpy(sr, &ar0, sizeof ar0);
+  std::memcpy(sr + 4, &ar1, sizeof ar1);
+  std::memcpy(si, &ai0, sizeof ai0);
+  std::memcpy(si + 4, &ai1, sizeof ai1);
 }
 
 }  // namespace
 
 LineProfile::LineProfile(const LineKernels& lk, const MaskSpectrum& mask, double px, double py, double dx, double dy)
     : px_(px), py_(py) {
+  *this = std::move(batch(lk, {Probe{&mask, px, py, dx, dy}}).front());
+}
+
+std::vector<LineProfile> LineProfile::batch(const LineKernels& lk, const std::vector<Probe>& probes) {
   const Kernels& kernels = lk.kernels();
-  direction(dx, dy);
-  if (!axis_) {
-    owned_ = std::make_shared<const AerialImage>(kernels, mask);
-    image_ = owned_.get();
-    return;
+  std::vector<LineProfile> out;
+  out.reserve(probes.size());
+  for (const Probe& p : probes) {
+    out.push_back(LineProfile(p.px, p.py));
+    LineProfile& line = out.back();
+    line.direction(p.dx, p.dy);
+    if (!line.axis_) {
+      line.owned_ = std::make_shared<const AerialImage>(kernels, *p.mask);
+      line.image_ = line.owned_.get();
+      continue;
+    }
+    if (p.mask->period() != kernels.period)
+      throw std::invalid_argument("aerial image: the mask's period is not the kernels' period");
+    if (p.mask->half() < kernels.half())
+      throw std::invalid_argument("aerial image: the mask has fewer frequencies than the kernels");
   }
-  if (mask.period() != kernels.period)
-    throw std::invalid_argument("aerial image: the mask's period is not the kernels' period");
-  if (mask.half() < kernels.half()) throw std::invalid_argument("aerial image: the mask has fewer frequencies than the kernels");
-  // As above, with the field K_i(kx, ky) c(kx, ky) never stored: the mask times the phases
-  // across the line is formed once, then each kernel adds its products frequency by frequency.
+  // As LineProfile(image, ...), with the field K_i(kx, ky) c(kx, ky) never stored: each mask
+  // times the phases across its line is formed once, then each kernel adds its products
+  // frequency by frequency, to every line along the same axis in turn.
   const int h = kernels.half();
-  const std::size_t n = lk.n_;
-  std::vector<cd> across(n), along(n);
+  const std::size_t n = lk.n_, count = kernels.count();
   const double w = 2 * kPi / kernels.period;
-  const bool along_x = dy_ == 0;
-  const int axis = along_x ? 0 : 1;
-  phases(w * (along_x ? py : px), h, across.data());
-  phases(w * (along_x ? px : py), h, along.data());
-  // [b * n + a]: the mask at a along the line, b across it, times across[b].
-  std::vector<double> mr(n * n), mi(n * n);
-  for (int b = -h; b <= h; ++b)
-    for (int a = -h; a <= h; ++a) {
-      const cd v = (along_x ? mask.at(a, b) : mask.at(b, a)) * across[std::size_t(b + h)];
-      mr[std::size_t(b + h) * n + std::size_t(a + h)] = v.real();
-      mi[std::size_t(b + h) * n + std::size_t(a + h)] = v.imag();
+  for (int axis = 0; axis < 2; ++axis) {
+    const bool along_x = axis == 0;
+    std::vector<std::size_t> mine;
+    for (std::size_t k = 0; k < out.size(); ++k)
+      if (out[k].axis_ && (out[k].dy_ == 0) == along_x) mine.push_back(k);
+    if (mine.empty()) continue;
+    const std::size_t lines = mine.size(), groups = (lines + kLanes - 1) / kLanes;
+    // [((g * n + a) * n + b) * kLanes + j]: line g kLanes + j's mask at a along the line, b
+    // across it, times across[b]; lanes beyond the last line stay zero.
+    std::vector<double> mr(groups * n * n * kLanes, 0.0), mi(groups * n * n * kLanes, 0.0);
+    std::vector<cd> along(lines * n), across(n);
+    for (std::size_t j = 0; j < lines; ++j) {
+      const Probe& p = probes[mine[j]];
+      phases(w * (along_x ? p.py : p.px), h, across.data());
+      phases(w * (along_x ? p.px : p.py), h, &along[j * n]);
+      const std::size_t g = j / kLanes, lane = j % kLanes;
+      for (int a = -h; a <= h; ++a)
+        for (int b = -h; b <= h; ++b) {
+          const cd v = (along_x ? p.mask->at(a, b) : p.mask->at(b, a)) * across[std::size_t(b + h)];
+          const std::size_t at = ((g * n + std::size_t(a + h)) * n + std::size_t(b + h)) * kLanes + lane;
+          mr[at] = v.real();
+          mi[at] = v.imag();
+        }
     }
-  const std::size_t count = kernels.count();
-  std::vector<double> re(count * n, 0.0), im(count * n, 0.0);
-  const double* kr = lk.re_[axis].data();
-  const double* ki = lk.im_[axis].data();
-  for (std::size_t i = 0; i < count; ++i) {
-    double* ar = &re[i * n];
-    double* ai = &im[i * n];
-    for (std::size_t b = 0; b < n; ++b) {
-      const std::size_t at = (i * n + b) * n;
-      multiply_add(kr + at, ki + at, &mr[b * n], &mi[b * n], ar, ai, lk.lo_[axis][b], lk.hi_[axis][b]);
-    }
-    for (std::size_t a = 0; a < n; ++a) {
-      const cd c = cd(ar[a], ai[a]) * along[a];
-      ar[a] = c.real();
-      ai[a] = c.imag();
+    // [(j * count + i) * n + a]: line j's kernel i at frequency a along the line.
+    std::vector<double> re(lines * count * n), im(lines * count * n);
+    const double* kr = lk.re_[axis].data();
+    const double* ki = lk.im_[axis].data();
+    double sr[kLanes], si[kLanes];
+    for (std::size_t g = 0; g < groups; ++g)
+      for (std::size_t i = 0; i < count; ++i)
+        for (std::size_t a = 0; a < n; ++a) {
+          const std::size_t at = (i * n + a) * n, m = (g * n + a) * n * kLanes;
+          dot_lanes(kr + at, ki + at, &mr[m], &mi[m], lk.lo_[axis][a], std::max(lk.lo_[axis][a], lk.hi_[axis][a]), sr, si);
+          for (std::size_t lane = 0; lane < kLanes && g * kLanes + lane < lines; ++lane) {
+            const std::size_t j = g * kLanes + lane;
+            re[(j * count + i) * n + a] = sr[lane];
+            im[(j * count + i) * n + a] = si[lane];
+          }
+        }
+    std::vector<double> line_re(count * n), line_im(count * n);
+    for (std::size_t j = 0; j < lines; ++j) {
+      const double* r = &re[j * count * n];
+      const double* q = &im[j * count * n];
+      for (std::size_t i = 0; i < count; ++i)
+        for (std::size_t a = 0; a < n; ++a) {
+          const cd c = cd(r[i * n + a], q[i * n + a]) * along[j * n + a];
+          line_re[i * n + a] = c.real();
+          line_im[i * n + a] = c.imag();
+        }
+      LineProfile& line = out[mine[j]];
+      line.omega_ = w * (along_x ? line.dx_ : line.dy_);
+      line.fold(line_re, line_im, kernels.weights, n);
     }
   }
-  omega_ = w * (along_x ? dx_ : dy_);
-  fold(re, im, kernels.weights, n);
+  return out;
 }
 
 namespace {
 
-// g[d] += c[a + d] * (u + i v) for d in [0, n - a): elementwise, as multiply_add.
-__attribute__((target_clones("avx2", "default"))) void fold_row(const double* cr, const double* ci, double u, double v,
-                                                                 double* gr, double* gi, std::size_t count) {
-  for (std::size_t d = 0; d < count; ++d) {
-    gr[d] += cr[d] * u - ci[d] * v;
-    gi[d] += cr[d] * v + ci[d] * u;
-  }
+// Sixteen terms of the fold at once: g[d0 + e] for e < 16 over every kernel i and every a with
+// a + d0 < n, as sum_i sum_a c_i(a + d0 + e) (u_i(a) + i v_i(a)), in that order (kernel by
+// kernel, a ascending), the partial sums in registers. c_i is padded with 16 zeros past n, so
+// lanes whose a + d0 + e >= n add only zeros. Products and sums apart, never fused: the same
+// bits from every clone.
+__attribute__((target_clones("avx2", "default"))) void fold_lanes(const double* cr, const double* ci,
+                                                                   const double* u, const double* v,
+                                                                   std::size_t kernels, std::size_t n,
+                                                                   std::size_t stride, std::size_t d0, double* gr,
+                                                                   double* gi) {
+  Quad ar[4] = {}, ai[4] = {};
+  for (std::size_t i = 0; i < kernels; ++i)
+    for (std::size_t a = 0; a + d0 < n; ++a) {
+      const double x = u[i * n + a], y = v[i * n + a];
+      if (x == 0 && y == 0) continue;
+      const double* r = cr + i * stride + a + d0;
+      const double* q = ci + i * stride + a + d0;
+      for (int e = 0; e < 4; ++e) {
+        Quad vr, vi;
+        std::memcpy(&vr, r + 4 * e, sizeof vr);
+        std::memcpy(&vi, q + 4 * e, sizeof vi);
+        ar[e] += vr * x - vi * y;
+        ai[e] += vr * y + vi * x;
+      }
+    }
+  std::memcpy(gr, ar, sizeof ar);
+  std::memcpy(gi, ai, sizeof ai);
 }
 
 }  // namespace
@@ -288,18 +366,23 @@ __attribute__((target_clones("avx2", "default"))) void fold_row(const double* cr
 void LineProfile::fold(const std::vector<double>& re, const std::vector<double>& im, const std::vector<double>& weights,
                        std::size_t n) {
   // |sum_a c_a z^a|^2 = sum_d (sum_a c_(a+d) conj(c_a)) z^d over d = -2h..2h, and the terms at
-  // -d are the conjugates of those at d: only d = 0..2h are kept.
-  std::vector<double> gr(n, 0.0), gi(n, 0.0);
-  for (std::size_t i = 0; i < weights.size(); ++i) {
-    const double* cr = &re[i * n];
-    const double* ci = &im[i * n];
+  // -d are the conjugates of those at d: only d = 0..2h are kept. The term of a is
+  // c_(a+d) w conj(c_a); a kernel's a where c_a is zero adds nothing and is skipped.
+  const std::size_t count = weights.size(), stride = n + 16;
+  std::vector<double> cr(count * stride, 0.0), ci(count * stride, 0.0), u(count * n), v(count * n);
+  for (std::size_t i = 0; i < count; ++i)
     for (std::size_t a = 0; a < n; ++a) {
-      if (cr[a] == 0 && ci[a] == 0) continue;
-      fold_row(cr + a, ci + a, weights[i] * cr[a], -weights[i] * ci[a], gr.data(), gi.data(), n - a);
+      cr[i * stride + a] = re[i * n + a];
+      ci[i * stride + a] = im[i * n + a];
+      u[i * n + a] = re[i * n + a] == 0 && im[i * n + a] == 0 ? 0.0 : weights[i] * re[i * n + a];
+      v[i * n + a] = re[i * n + a] == 0 && im[i * n + a] == 0 ? 0.0 : -weights[i] * im[i * n + a];
     }
-  }
   g_.resize(n);
-  for (std::size_t d = 0; d < n; ++d) g_[d] = cd(gr[d], gi[d]);
+  double gr[16], gi[16];
+  for (std::size_t d0 = 0; d0 < n; d0 += 16) {
+    fold_lanes(cr.data(), ci.data(), u.data(), v.data(), count, n, stride, d0, gr, gi);
+    for (std::size_t e = 0; e < 16 && d0 + e < n; ++e) g_[d0 + e] = cd(gr[e], gi[e]);
+  }
 }
 
 double LineProfile::at(double t) const {

@@ -266,39 +266,46 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
   const std::unique_ptr<const LineKernels> defocused(model.defocus ? new LineKernels(*model.defocus) : nullptr);
   std::exception_ptr error;
   std::mutex error_lock;
-  detail::parallel_for(reps.size(), threads, [&](unsigned, std::size_t k) {
+  // Windows go to the workers in blocks whose lines are profiled together (LineProfile::batch:
+  // the kernels are read once a block, not once a window).
+  constexpr std::size_t kBlock = 16;
+  detail::parallel_for((reps.size() + kBlock - 1) / kBlock, threads, [&](unsigned, std::size_t block) {
     try {
-      const std::size_t i = reps[k];
-      const double cx = g.cx[i], cy = g.cy[i];
-      const std::int64_t ox = origin(cx), oy = origin(cy);
-      const std::vector<Polygon> clip = shapes.clip(ox, oy, W);
-      const MaskSpectrum mask(clip, Window{{ox, oy}, half_dbu}, P, kernels.half());
-      double dx = g.x2[i] - g.x1[i], dy = g.y2[i] - g.y1[i];
-      const double len = std::hypot(dx, dy);
-      dx /= len, dy /= len;
-      const double px = (2 * cx - double(ox)) * half_dbu, py = (2 * cy - double(oy)) * half_dbu;
-      const LineProfile line(focused, mask, px, py, dx, dy);
-      const bool space = g.type[i] == kExternalGauge;
-      const double drawn = g.cd[i] * dbu_nm;
-      const Reading nominal = read(line, t, space, drawn);
-      if (nominal.fail == Fail::none) out.printed_cd[i] = nominal.width;  // a failure leaves NaN
-      out.fails[i] = out.fails_nominal[i] = nominal.fail;
-      out.score[i] = nominal.score;
-      if (!window) return;
-      // The outer corner: in focus at the high dose, the same image against a lower threshold.
-      const Reading outer = read(line, t_outer, space, drawn);
-      // The inner corner: defocused at the low dose (the focus image for a dose-only window).
-      Reading inner;
-      if (model.defocus) {
-        inner = read(LineProfile(*defocused, mask, px, py, dx, dy), t_inner, space, drawn);
-      } else {
-        inner = read(line, t_inner, space, drawn);
+      const std::size_t first = block * kBlock, last = std::min(first + kBlock, reps.size());
+      std::vector<MaskSpectrum> masks;
+      masks.reserve(last - first);
+      std::vector<Probe> probes;
+      for (std::size_t k = first; k < last; ++k) {
+        const std::size_t i = reps[k];
+        const double cx = g.cx[i], cy = g.cy[i];
+        const std::int64_t ox = origin(cx), oy = origin(cy);
+        masks.emplace_back(shapes.clip(ox, oy, W), Window{{ox, oy}, half_dbu}, P, kernels.half());
+        const double px = (2 * cx - double(ox)) * half_dbu, py = (2 * cy - double(oy)) * half_dbu;
+        probes.push_back({&masks.back(), px, py, g.x2[i] - g.x1[i], g.y2[i] - g.y1[i]});
       }
-      for (const Reading* r : {&outer, static_cast<const Reading*>(&inner)}) {
-        if (r->fail != Fail::none) out.fails[i] = r->fail;
-        out.score[i] = std::min(out.score[i], r->score);
+      const std::vector<LineProfile> lines = LineProfile::batch(focused, probes);
+      const std::vector<LineProfile> defocused_lines =
+          window && defocused ? LineProfile::batch(*defocused, probes) : std::vector<LineProfile>();
+      for (std::size_t k = first; k < last; ++k) {
+        const std::size_t i = reps[k];
+        const LineProfile& line = lines[k - first];
+        const bool space = g.type[i] == kExternalGauge;
+        const double drawn = g.cd[i] * dbu_nm;
+        const Reading nominal = read(line, t, space, drawn);
+        if (nominal.fail == Fail::none) out.printed_cd[i] = nominal.width;  // a failure leaves NaN
+        out.fails[i] = out.fails_nominal[i] = nominal.fail;
+        out.score[i] = nominal.score;
+        if (!window) continue;
+        // The outer corner: in focus at the high dose, the same image against a lower threshold.
+        const Reading outer = read(line, t_outer, space, drawn);
+        // The inner corner: defocused at the low dose (the focus image for a dose-only window).
+        const Reading inner = read(defocused ? defocused_lines[k - first] : line, t_inner, space, drawn);
+        for (const Reading* r : {&outer, &inner}) {
+          if (r->fail != Fail::none) out.fails[i] = r->fail;
+          out.score[i] = std::min(out.score[i], r->score);
+        }
+        if (!outer.open && !inner.open) out.pv_band[i] = std::abs(outer.width - inner.width);
       }
-      if (!outer.open && !inner.open) out.pv_band[i] = std::abs(outer.width - inner.width);
     } catch (...) {
       const std::lock_guard<std::mutex> hold(error_lock);
       if (!error) error = std::current_exception();
