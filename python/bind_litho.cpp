@@ -144,6 +144,7 @@ void bind_litho(py::module_& m) {
         d["score"] = bytes_of(p.score);
         d["simulations"] = p.simulations;
         d["shared"] = p.shared;
+        d["images"] = p.images;
         d["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         return d;
       },
@@ -159,7 +160,7 @@ void bind_litho(py::module_& m) {
       "focus) and 1 + dose in focus. Returns bytes columns 'printed_cd' (float64 nm, NaN when not measured),\n"
       "'fails' (uint8: 0 none, 1 pinch, 2 bridge; the worst over nominal and the corners), 'fails_nominal',\n"
       "'pv_band' (float64 nm, NaN without a window), 'score' (float64, lower = worse) and 'simulations',\n"
-      "'shared', 'seconds'.");
+      "'shared', 'images' (line profiles computed: simulated gauges on one line share one), 'seconds'.");
 }
 
 }  // namespace linf::bind

@@ -266,46 +266,72 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
   const std::unique_ptr<const LineKernels> defocused(model.defocus ? new LineKernels(*model.defocus) : nullptr);
   std::exception_ptr error;
   std::mutex error_lock;
-  // Windows go to the workers in blocks whose lines are profiled together (LineProfile::batch:
-  // the kernels are read once a block, not once a window).
+  // Simulated gauges on one line (the same point and direction: a width gauge of each type
+  // across one feature, say) share its window and profile, and are read each by its own type.
+  // The lines in the order of their first gauge; lines[l]'s gauges are on_line[l].
+  std::vector<std::size_t> lines;
+  std::vector<std::vector<std::size_t>> on_line;
+  {
+    struct Key {
+      double cx, cy, dx, dy;
+      bool operator==(const Key& o) const { return cx == o.cx && cy == o.cy && dx == o.dx && dy == o.dy; }
+    };
+    struct Hash {
+      std::size_t operator()(const Key& k) const {
+        std::size_t h = 0;
+        for (const double v : {k.cx, k.cy, k.dx, k.dy}) h = h * 1000003u ^ std::hash<double>()(v);
+        return h;
+      }
+    };
+    std::unordered_map<Key, std::size_t, Hash> line_of;
+    for (const std::size_t i : reps) {
+      const double dx = g.x2[i] - g.x1[i], dy = g.y2[i] - g.y1[i], len = std::hypot(dx, dy);
+      const auto [at, fresh] = line_of.try_emplace(Key{g.cx[i], g.cy[i], dx / len, dy / len}, lines.size());
+      if (fresh) lines.push_back(i), on_line.emplace_back();
+      on_line[at->second].push_back(i);
+    }
+  }
+  out.images = lines.size();
+  // Lines go to the workers in blocks profiled together (LineProfile::batch: the kernels are
+  // read once a block, not once a line).
   constexpr std::size_t kBlock = 16;
-  detail::parallel_for((reps.size() + kBlock - 1) / kBlock, threads, [&](unsigned, std::size_t block) {
+  detail::parallel_for((lines.size() + kBlock - 1) / kBlock, threads, [&](unsigned, std::size_t block) {
     try {
-      const std::size_t first = block * kBlock, last = std::min(first + kBlock, reps.size());
+      const std::size_t first = block * kBlock, last = std::min(first + kBlock, lines.size());
       std::vector<MaskSpectrum> masks;
       masks.reserve(last - first);
       std::vector<Probe> probes;
-      for (std::size_t k = first; k < last; ++k) {
-        const std::size_t i = reps[k];
+      for (std::size_t l = first; l < last; ++l) {
+        const std::size_t i = lines[l];
         const double cx = g.cx[i], cy = g.cy[i];
         const std::int64_t ox = origin(cx), oy = origin(cy);
         masks.emplace_back(shapes.clip(ox, oy, W), Window{{ox, oy}, half_dbu}, P, kernels.half());
         const double px = (2 * cx - double(ox)) * half_dbu, py = (2 * cy - double(oy)) * half_dbu;
         probes.push_back({&masks.back(), px, py, g.x2[i] - g.x1[i], g.y2[i] - g.y1[i]});
       }
-      const std::vector<LineProfile> lines = LineProfile::batch(focused, probes);
-      const std::vector<LineProfile> defocused_lines =
+      const std::vector<LineProfile> focus_lines = LineProfile::batch(focused, probes);
+      const std::vector<LineProfile> defocus_lines =
           window && defocused ? LineProfile::batch(*defocused, probes) : std::vector<LineProfile>();
-      for (std::size_t k = first; k < last; ++k) {
-        const std::size_t i = reps[k];
-        const LineProfile& line = lines[k - first];
-        const bool space = g.type[i] == kExternalGauge;
-        const double drawn = g.cd[i] * dbu_nm;
-        const Reading nominal = read(line, t, space, drawn);
-        if (nominal.fail == Fail::none) out.printed_cd[i] = nominal.width;  // a failure leaves NaN
-        out.fails[i] = out.fails_nominal[i] = nominal.fail;
-        out.score[i] = nominal.score;
-        if (!window) continue;
-        // The outer corner: in focus at the high dose, the same image against a lower threshold.
-        const Reading outer = read(line, t_outer, space, drawn);
-        // The inner corner: defocused at the low dose (the focus image for a dose-only window).
-        const Reading inner = read(defocused ? defocused_lines[k - first] : line, t_inner, space, drawn);
-        for (const Reading* r : {&outer, &inner}) {
-          if (r->fail != Fail::none) out.fails[i] = r->fail;
-          out.score[i] = std::min(out.score[i], r->score);
+      for (std::size_t l = first; l < last; ++l)
+        for (const std::size_t i : on_line[l]) {
+          const LineProfile& line = focus_lines[l - first];
+          const bool space = g.type[i] == kExternalGauge;
+          const double drawn = g.cd[i] * dbu_nm;
+          const Reading nominal = read(line, t, space, drawn);
+          if (nominal.fail == Fail::none) out.printed_cd[i] = nominal.width;  // a failure leaves NaN
+          out.fails[i] = out.fails_nominal[i] = nominal.fail;
+          out.score[i] = nominal.score;
+          if (!window) continue;
+          // The outer corner: in focus at the high dose, the same image against a lower threshold.
+          const Reading outer = read(line, t_outer, space, drawn);
+          // The inner corner: defocused at the low dose (the focus image for a dose-only window).
+          const Reading inner = read(defocused ? defocus_lines[l - first] : line, t_inner, space, drawn);
+          for (const Reading* r : {&outer, &inner}) {
+            if (r->fail != Fail::none) out.fails[i] = r->fail;
+            out.score[i] = std::min(out.score[i], r->score);
+          }
+          if (!outer.open && !inner.open) out.pv_band[i] = std::abs(outer.width - inner.width);
         }
-        if (!outer.open && !inner.open) out.pv_band[i] = std::abs(outer.width - inner.width);
-      }
     } catch (...) {
       const std::lock_guard<std::mutex> hold(error_lock);
       if (!error) error = std::current_exception();

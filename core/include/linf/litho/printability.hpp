@@ -63,8 +63,9 @@ struct Printability {
   // deeper the lower; I(c) the image at the gauge point, t that condition's threshold); no
   // edge within reach, 2 reach / drawn cd (a lower bound of the ratio).
   std::vector<double> score;
-  std::size_t simulations = 0;  // windows simulated
-  std::size_t shared = 0;       // gauges that took another gauge's simulation (same type and context)
+  std::size_t simulations = 0;  // gauges read on their own window (one a type and context)
+  std::size_t shared = 0;       // gauges that took another gauge's reading (same type and context)
+  std::size_t images = 0;       // line profiles computed: simulated gauges on one line share one
 };
 
 // Each simulated gauge's window is the square of side P (the kernels' period) centred on its
