@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -236,9 +237,8 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
     double score = 0;
     bool open = false;
   };
-  auto read = [&](const LineProfile& line, double t, bool space, double drawn) {
+  auto read = [&](const Cut& cut, const LineProfile& line, double t, bool space, double drawn) {
     Reading r;
-    const Cut cut = measure(line, t, space ? Across::clear : Across::printed, reach);
     switch (cut.outcome) {
       case Cut::Outcome::measured:
         r.width = cut.width;
@@ -312,26 +312,37 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
       const std::vector<LineProfile> focus_lines = LineProfile::batch(focused, probes);
       const std::vector<LineProfile> defocus_lines =
           window && defocused ? LineProfile::batch(*defocused, probes) : std::vector<LineProfile>();
-      for (std::size_t l = first; l < last; ++l)
+      for (std::size_t l = first; l < last; ++l) {
+        // A line's cuts, made on first use: [condition: nominal, outer, inner][space]. Gauges of
+        // several types on one line read the same cuts; only their drawn cds differ.
+        std::optional<Cut> cuts[3][2];
+        const LineProfile& line = focus_lines[l - first];
+        const LineProfile& blurred = defocused ? defocus_lines[l - first] : line;
+        auto reading = [&](int condition, bool space, double drawn) {
+          const LineProfile& on = condition == 2 ? blurred : line;
+          const double at = condition == 0 ? t : condition == 1 ? t_outer : t_inner;
+          std::optional<Cut>& cut = cuts[condition][space];
+          if (!cut) cut = measure(on, at, space ? Across::clear : Across::printed, reach);
+          return read(*cut, on, at, space, drawn);
+        };
         for (const std::size_t i : on_line[l]) {
-          const LineProfile& line = focus_lines[l - first];
           const bool space = g.type[i] == kExternalGauge;
           const double drawn = g.cd[i] * dbu_nm;
-          const Reading nominal = read(line, t, space, drawn);
+          const Reading nominal = reading(0, space, drawn);
           if (nominal.fail == Fail::none) out.printed_cd[i] = nominal.width;  // a failure leaves NaN
           out.fails[i] = out.fails_nominal[i] = nominal.fail;
           out.score[i] = nominal.score;
           if (!window) continue;
-          // The outer corner: in focus at the high dose, the same image against a lower threshold.
-          const Reading outer = read(line, t_outer, space, drawn);
-          // The inner corner: defocused at the low dose (the focus image for a dose-only window).
-          const Reading inner = read(defocused ? defocus_lines[l - first] : line, t_inner, space, drawn);
+          // The outer corner: in focus at the high dose, the same image against a lower threshold;
+          // the inner corner: defocused at the low dose (the focus image for a dose-only window).
+          const Reading outer = reading(1, space, drawn), inner = reading(2, space, drawn);
           for (const Reading* r : {&outer, &inner}) {
             if (r->fail != Fail::none) out.fails[i] = r->fail;
             out.score[i] = std::min(out.score[i], r->score);
           }
           if (!outer.open && !inner.open) out.pv_band[i] = std::abs(outer.width - inner.width);
         }
+      }
     } catch (...) {
       const std::lock_guard<std::mutex> hold(error_lock);
       if (!error) error = std::current_exception();
