@@ -38,9 +38,10 @@ std::mutex& planner_lock() {
   return m;
 }
 
-// The two plans of an m x m grid with `rows` nonzero rows: made once a process with
-// FFTW_MEASURE (at m = 256 its plans run about 8 times faster than FFTW_ESTIMATE's, measured
-// here) and kept, so only the first grid of a size pays the planning (a fraction of a second).
+// The two plans of an m x m grid with `rows` nonzero rows: made once a process and kept. With
+// FFTW_ESTIMATE: at m = 128 (the report's and the editor's pictures) FFTW_MEASURE's plans ran
+// 8 pictures in 10 ms against 13 ms, but took 0.15 s to make, which a run's few pictures never
+// win back (measured here).
 struct GridPlans {
   fftw_plan along_x, along_y;
 };
@@ -54,8 +55,8 @@ GridPlans grid_plans(int m, int rows) {
   fftw_complex* b = fftw_alloc_complex(mm);
   // `rows` rows of m contiguous values; then m columns of m values, m apart.
   GridPlans p;
-  p.along_x = fftw_plan_many_dft(1, &m, rows, a, nullptr, 1, m, a, nullptr, 1, m, FFTW_BACKWARD, FFTW_MEASURE);
-  p.along_y = fftw_plan_many_dft(1, &m, m, b, nullptr, m, 1, b, nullptr, m, 1, FFTW_BACKWARD, FFTW_MEASURE);
+  p.along_x = fftw_plan_many_dft(1, &m, rows, a, nullptr, 1, m, a, nullptr, 1, m, FFTW_BACKWARD, FFTW_ESTIMATE);
+  p.along_y = fftw_plan_many_dft(1, &m, m, b, nullptr, m, 1, b, nullptr, m, 1, FFTW_BACKWARD, FFTW_ESTIMATE);
   fftw_free(a);
   fftw_free(b);
   made.emplace(std::make_pair(m, rows), p);
