@@ -13,6 +13,7 @@
 #include "bind.hpp"
 #include "convert.hpp"
 #include "linf/litho/calibration.hpp"
+#include "linf/litho/contour.hpp"
 #include "linf/litho/optics.hpp"
 #include "linf/litho/printability.hpp"
 
@@ -89,6 +90,26 @@ void bind_litho(py::module_& m) {
       "Pictures' aerial images: for each centre (cx[k], cy[k]) in DBU the window of the kernels' period centred\n"
       "there, as gauge_printability clips it, imaged on an m x m grid: bytes of float64, value [j * m + i] at the\n"
       "window's corner (the centre minus half the period) + (i, j) * period / m, in nm.");
+
+  m.def(
+      "litho_contours",
+      [](const py::buffer& values, int m, int lo, int hi, double level) {
+        const py::buffer_info b = values.request();
+        if (b.itemsize != sizeof(double) || b.ndim != 1 || b.strides[0] != b.itemsize)
+          throw std::invalid_argument("contour: the image must be contiguous float64");
+        const double* v = static_cast<const double*>(b.ptr);
+        const std::vector<double> image(v, v + b.size);
+        std::vector<double> segments;
+        {
+          py::gil_scoped_release unlocked;
+          segments = litho::contour_segments(image, m, lo, hi, level);
+        }
+        return bytes_of(segments);
+      },
+      py::arg("values"), py::arg("m"), py::arg("lo"), py::arg("hi"), py::arg("level"),
+      "Marching squares on an m x m image (float64, value [j * m + i], as litho_window_images gives it) over\n"
+      "the cells [lo, hi - 1)^2: bytes of float64, four a segment (x1, y1, x2, y2) in grid units where the\n"
+      "image crosses `level` (docs/design.md, 'The report's pictures').");
 
   m.def(
       "calibrate_threshold",

@@ -132,6 +132,7 @@ s = json.load(open(os.path.join(lit, "summary.json")))["litho"]
 expect(s["fails"] == {k: fails.count(k) for k in ("none", "pinch", "bridge")}, "summary.json counts the fails")
 expect(s["simulations"] + s["shared"] == s["simulated"] and s["simulations"] <= len(body),
        "summary.json: simulations + shared = simulated gauges")
+expect(0 < s["images"] <= s["simulations"], "summary.json: one image a line, at most one a simulation")
 print("litho %s: threshold %s, %d gauges, %d windows, fails %s, printed %d, pv_band %d"
       % (MODEL, s["threshold"], len(body), s["simulations"], s["fails"], sum(1 for r in body if r[head["printed_cd"]]),
          len(bands)))

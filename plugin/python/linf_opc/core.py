@@ -53,6 +53,7 @@ gauge_printability = _call("gauge_printability")
 litho_kernels = _core.litho_kernels
 calibrate_threshold = _core.calibrate_threshold
 litho_window_images = _core.litho_window_images
+litho_contours = _core.litho_contours
 # Arithmetic on one segment, called once a drawn edge: always in this process.
 cut_to_drawable = _core.cut_to_drawable
 

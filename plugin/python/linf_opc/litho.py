@@ -221,6 +221,7 @@ def rescore(result, polygons, dbu_um, model, threads=0):
                         "contrast": round(cal["contrast"], 6)},
         "process_window": {"dose": DOSE, "defocus_nm": model.defocus_nm},
         "simulated": len(idx), "not_simulable": n - len(idx), "not_read": n - sum(read), "simulations": r["simulations"], "shared": r["shared"],
+        "images": r["images"],
         "fails": {name: p_fail.count(k) for k, name in enumerate(FAILS)},
         "fails_nominal": {name: array("B", r["fails_nominal"]).count(k) for k, name in enumerate(FAILS)},
         "seconds": round(time.perf_counter() - t0, 3),

@@ -23,35 +23,11 @@ SIDE = 260   # px of one panel
 
 
 def contours_of(values, m, lo, hi, level):
-    """Marching squares on the grid cells [lo, hi) x [lo, hi): segments (x1, y1, x2, y2) in grid
-    units where the image crosses `level`."""
-    out = []
-
-    def at(i, j):
-        return values[j * m + i]
-
-    def cut(i1, j1, v1, i2, j2, v2):
-        t = (level - v1) / (v2 - v1)
-        return (i1 + t * (i2 - i1), j1 + t * (j2 - j1))
-
-    for j in range(lo, hi - 1):
-        for i in range(lo, hi - 1):
-            c = ((i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1))
-            v = [at(*p) for p in c]
-            pts = []
-            for k in range(4):
-                a, b = k, (k + 1) % 4
-                if (v[a] >= level) != (v[b] >= level):
-                    pts.append(cut(c[a][0], c[a][1], v[a], c[b][0], c[b][1], v[b]))
-            if len(pts) == 2:
-                out.append(pts[0] + pts[1])
-            elif len(pts) == 4:  # a saddle: pair by the cell's centre value
-                centre = sum(v) / 4
-                if (centre >= level) == (v[0] >= level):
-                    out += [pts[0] + pts[3], pts[1] + pts[2]]
-                else:
-                    out += [pts[0] + pts[1], pts[2] + pts[3]]
-    return out
+    """Marching squares on the grid cells [lo, hi) x [lo, hi) (core.litho_contours): segments
+    (x1, y1, x2, y2) in grid units where the image crosses `level`."""
+    flat = array("d")
+    flat.frombytes(core.litho_contours(values, m, lo, hi, level))
+    return [tuple(flat[k:k + 4]) for k in range(0, len(flat), 4)]
 
 
 def _panel(title, draw):

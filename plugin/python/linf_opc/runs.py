@@ -70,8 +70,8 @@ def printability(p, inp, result, model):
     p.start("printability", "%s gauges on %s" % (count(len(result.gauges)), model.name))
     litho.rescore(result, inp.polygons, inp.dbu, model)
     s = result.litho_summary
-    p.done("%s windows simulated for %s gauges (%s shared); %s pinch, %s bridge"
-           % (count(s["simulations"]), count(s["simulated"]), count(s["shared"]), count(s["fails"]["pinch"]),
+    p.done("%s windows simulated for %s gauges (%s shared a context); %s pinch, %s bridge"
+           % (count(s["images"]), count(s["simulated"]), count(s["shared"]), count(s["fails"]["pinch"]),
               count(s["fails"]["bridge"])))
     return result
 

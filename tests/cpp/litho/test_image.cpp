@@ -144,6 +144,34 @@ TEST(AerialImage, ProfilesFromKernelsAndMaskAreTheImages) {
   EXPECT_THROW(LineKernels(Kernels{}), std::invalid_argument);
 }
 
+// Profiles made together (LineProfile::batch: 8 lines to a group, so 19 lines make full and
+// partial groups along each axis) are the same bits as each made alone: along both axes,
+// slanted, in windows of different masks, in any order.
+TEST(AerialImage, ProfilesMadeTogetherAreTheProfilesMadeAlone) {
+  const LineKernels lk(focus());
+  std::vector<MaskSpectrum> masks;
+  for (int k = 0; k < 3; ++k) {
+    std::vector<Polygon> c = clip();
+    c.push_back(box(200 + 100 * k, 300, 260 + 100 * k, 1700));  // a different mask each
+    masks.emplace_back(c, Window{}, P, focus().half());
+  }
+  std::vector<Probe> probes;
+  for (int j = 0; j < 19; ++j) {
+    const double dx = j % 5 == 4 ? 3 : j % 2 == 0 ? (j % 4 == 0 ? 1 : -2) : 0;
+    const double dy = j % 5 == 4 ? 4 : j % 2 == 1 ? (j % 3 == 0 ? -1 : 5) : 0;
+    probes.push_back({&masks[std::size_t(j % 3)], 700 + 31.5 * j, 1300 - 27.25 * j, dx, dy});
+  }
+  const std::vector<LineProfile> together = LineProfile::batch(lk, probes);
+  ASSERT_EQ(together.size(), probes.size());
+  for (std::size_t j = 0; j < probes.size(); ++j) {
+    const Probe& p = probes[j];
+    const LineProfile alone(lk, *p.mask, p.px, p.py, p.dx, p.dy);
+    for (double t = -200; t <= 200; t += 6.1) ASSERT_EQ(together[j].at(t), alone.at(t)) << j << " " << t;
+  }
+  EXPECT_TRUE(LineProfile::batch(lk, {}).empty());
+  EXPECT_THROW(LineProfile::batch(lk, {probes[0], Probe{&masks[0], 0, 0, 0, 0}}), std::invalid_argument);
+}
+
 // The image of a clip equals the transformed image of each of its 8 transforms at matching
 // points. The tolerance is not a guess: for any mask, |I'(g(q)) - I(q)| <= ||T o g - T|| sum |c|^2
 // (the TCC's symmetry defect, measured from the kernels, times the mask's spectral energy);

@@ -118,6 +118,22 @@ TEST(MaskSpectrum, EdgesAtAnyAngle) {
   }
 }
 
+// A real mask's spectrum is Hermitian, c(-kx, -ky) = conj(c(kx, ky)): to the bit on Manhattan
+// polygons (half of it is formed and mirrored), to rounding with a slanted edge (formed whole).
+TEST(MaskSpectrum, HermitianAsTheMaskIsReal) {
+  const MaskSpectrum manhattan = spectrum({box(100, 200, 700, 500), box(900, 150, 1300, 1900)});
+  const Polygon slanted{{{400, 300}, {1000, 650}, {1571, 300}, {1900, 1100}, {613, 1700}}, {}};
+  const MaskSpectrum any = spectrum({slanted, box(100, 1800, 300, 2000)});
+  double worst = 0;
+  for (int kx = -H; kx <= H; ++kx)
+    for (int ky = -H; ky <= H; ++ky) {
+      ASSERT_EQ(manhattan.at(-kx, -ky), std::conj(manhattan.at(kx, ky))) << kx << " " << ky;
+      worst = std::max(worst, std::abs(any.at(-kx, -ky) - std::conj(any.at(kx, ky))));
+    }
+  EXPECT_LT(worst, 1e-16);
+  EXPECT_GT(std::abs(any.at(3, 5)), 1e-4);  // not trivially symmetric: the coefficients are not small
+}
+
 // The square's transforms about the window map the coefficients as the Fourier transform says:
 // the mirror x -> P - x gives c(-kx, ky); the quarter turn (x, y) -> (P - y, x) gives c(ky, -kx).
 // On slanted edges too.

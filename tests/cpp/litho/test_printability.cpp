@@ -274,6 +274,33 @@ TEST(Printability, OneSimulationAContext) {
   EXPECT_EQ(run(layer, g, true).simulations, 3u);
 }
 
+// Gauges of several types on one line (one point, one direction; contexts of their own) are
+// read on one image each by its type, as if alone: two widths share the image and the reading
+// (their drawn cds differ, so their scores do), a gauge across them takes another image.
+TEST(Printability, GaugesOnOneLineShareItsImage) {
+  const std::vector<Polygon> layer{box(900, 500, 990, 1500), box(1090, 500, 1180, 1500)};
+  Gauges g;
+  g.add(945, 1000, true, 90, kInternal, 1);
+  g.add(945, 1000, true, 60, 2, 2);          // a sandwich's line across the same feature
+  g.add(945, 1000, false, 90, kInternal, 3);  // along the line: another direction
+  const Printability together = run(layer, g, true);
+  EXPECT_EQ(together.simulations, 3u);
+  EXPECT_EQ(together.images, 2u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    Gauges one;
+    one.add(g.cx[i], g.cy[i], g.x1[i] != g.x2[i], g.cd[i], g.type[i]);
+    const Printability alone = run(layer, one);
+    EXPECT_EQ(alone.images, 1u);
+    EXPECT_EQ(together.fails[i], alone.fails[0]) << i;
+    EXPECT_EQ(together.score[i], alone.score[0]) << i;
+    if (!std::isnan(alone.printed_cd[0])) EXPECT_EQ(together.printed_cd[i], alone.printed_cd[0]) << i;
+    else EXPECT_TRUE(std::isnan(together.printed_cd[i])) << i;
+  }
+  ASSERT_EQ(together.fails[0], Fail::none);
+  EXPECT_EQ(together.printed_cd[0], together.printed_cd[1]);
+  EXPECT_NE(together.score[0], together.score[1]);
+}
+
 // A gauge's printed CD through this API is the same under the 8 transforms of the layer about
 // the gauge point, to the bound of part 1 (test_resist.cpp): the image's symmetry defect times
 // the clip's spectral energy, over the image's slope at each edge.
