@@ -80,9 +80,13 @@ Kernels kernels_from_optics(const Optics& o) {
     throw std::invalid_argument(s.str());
   }
   // A: one column a source point, its pupil shifted onto the frequency grid, times sqrt(1 / N).
+  // A column is nonzero on its pupil's disc only (a fifth of the grid for euv): kept as the
+  // list of its rows and values, for the Gram matrix below.
   const double k_medium = o.medium / o.wavelength;
   const double amplitude = 1 / std::sqrt(double(source.size()));
-  Eigen::MatrixXcd a = Eigen::MatrixXcd::Zero(Eigen::Index(n) * n, Eigen::Index(source.size()));
+  const Eigen::Index rows = Eigen::Index(n) * n, columns = Eigen::Index(source.size());
+  Eigen::MatrixXcd a = Eigen::MatrixXcd::Zero(rows, columns);
+  std::vector<std::vector<std::pair<Eigen::Index, cd>>> disc(source.size());
   for (std::size_t s = 0; s < source.size(); ++s)
     for (int kx = -h; kx <= h; ++kx)
       for (int ky = -h; ky <= h; ++ky) {
@@ -91,10 +95,25 @@ Kernels kernels_from_optics(const Optics& o) {
         if (f2 > r * r * (1 + eps)) continue;
         const double f_nm2 = f2 / (o.period * o.period);
         const double phase = 2 * kPi * o.defocus * (std::sqrt(k_medium * k_medium - f_nm2) - k_medium);
-        a(Eigen::Index(kx + h) * n + (ky + h), Eigen::Index(s)) = amplitude * std::polar(1.0, phase);
+        const Eigen::Index row = Eigen::Index(kx + h) * n + (ky + h);
+        a(row, Eigen::Index(s)) = amplitude * std::polar(1.0, phase);
+        disc[s].push_back({row, a(row, Eigen::Index(s))});
       }
-  // T = A A^H has A^H A's nonzero eigenvalues; its eigenvectors are A v / sqrt(lambda).
-  const Eigen::MatrixXcd gram = a.adjoint() * a;
+  // T = A A^H has A^H A's nonzero eigenvalues; its eigenvectors are A v / sqrt(lambda). The
+  // Gram matrix A^H A is Hermitian and each entry a sum over two discs' overlap: its upper
+  // triangle from the discs (0.17 -> 0.03 s for euv against the dense product, measured).
+  Eigen::MatrixXcd gram(columns, columns);
+  std::vector<cd> column(static_cast<std::size_t>(rows), cd(0));
+  for (Eigen::Index s = 0; s < columns; ++s) {
+    for (const auto& [row, v] : disc[std::size_t(s)]) column[std::size_t(row)] = std::conj(v);
+    for (Eigen::Index t = s; t < columns; ++t) {
+      cd sum = 0;
+      for (const auto& [row, v] : disc[std::size_t(t)]) sum += column[std::size_t(row)] * v;
+      gram(s, t) = sum;
+      gram(t, s) = std::conj(sum);
+    }
+    for (const auto& [row, v] : disc[std::size_t(s)]) column[std::size_t(row)] = 0;
+  }
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> eig(gram);
   if (eig.info() != Eigen::Success) throw std::runtime_error("optics: the eigen-decomposition failed");
   const Eigen::VectorXd& values = eig.eigenvalues();  // ascending
