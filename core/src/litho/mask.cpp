@@ -9,6 +9,7 @@
 #include "linf/litho/mask.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -57,15 +58,39 @@ void edge_integrals(double step, double a, double b, int half, double scale, cd*
   }
 }
 
-// c[b] += f g[b] for b < n, complex in parts: elementwise, so vectorised without reordering a
-// sum (the same bits from every clone).
-__attribute__((target_clones("avx2", "default"))) void add_product(double fr, double fi, const double* gr,
-                                                                    const double* gi, double* cr, double* ci,
-                                                                    std::size_t n) {
-  for (std::size_t b = 0; b < n; ++b) {
-    cr[b] += fr * gr[b] - fi * gi[b];
-    ci[b] += fr * gi[b] + fi * gr[b];
-  }
+using Quad = double __attribute__((vector_size(4 * sizeof(double))));
+
+// c[a][b] += sum over the heights h, in order, of f_h(a) g_h(b), for a in [from, n) and all b,
+// complex in parts: f at [h * n + a], g at [h * stride + b] (stride a multiple of 8, zero past
+// n), c at [a * stride + b]. Eight b at a time, the partial sums in registers over every height
+// (a row at a time would load and store c once a height); each c[a][b] still adds its heights'
+// products one by one in order, products and sums never fused: the same bits from every clone
+// as adding the products height by height.
+__attribute__((target_clones("avx2", "default"))) void add_products(const double* fr, const double* fi,
+                                                                     const double* gr, const double* gi,
+                                                                     std::size_t heights, std::size_t n,
+                                                                     std::size_t stride, std::size_t from, double* cr,
+                                                                     double* ci) {
+  for (std::size_t a = from; a < n; ++a)
+    for (std::size_t b = 0; b < n; b += 8) {
+      double* r = cr + a * stride + b;
+      double* q = ci + a * stride + b;
+      Quad r0, r1, q0, q1;
+      std::memcpy(&r0, r, sizeof r0), std::memcpy(&r1, r + 4, sizeof r1);
+      std::memcpy(&q0, q, sizeof q0), std::memcpy(&q1, q + 4, sizeof q1);
+      for (std::size_t h = 0; h < heights; ++h) {
+        const double x = fr[h * n + a], y = fi[h * n + a];
+        Quad u0, u1, v0, v1;
+        std::memcpy(&u0, gr + h * stride + b, sizeof u0), std::memcpy(&u1, gr + h * stride + b + 4, sizeof u1);
+        std::memcpy(&v0, gi + h * stride + b, sizeof v0), std::memcpy(&v1, gi + h * stride + b + 4, sizeof v1);
+        r0 += x * u0 - y * v0;
+        r1 += x * u1 - y * v1;
+        q0 += x * v0 + y * u0;
+        q1 += x * v1 + y * u1;
+      }
+      std::memcpy(r, &r0, sizeof r0), std::memcpy(r + 4, &r1, sizeof r1);
+      std::memcpy(q, &q0, sizeof q0), std::memcpy(q + 4, &q1, sizeof q1);
+    }
 }
 
 }  // namespace
@@ -76,8 +101,10 @@ MaskSpectrum::MaskSpectrum(const std::vector<Polygon>& polygons, const Window& w
   if (!(period_nm > 0) || !(window.dbu_nm > 0))
     throw std::invalid_argument("mask spectrum: the period and the database unit must be positive");
   const int n = 2 * half + 1;
-  re_.assign(std::size_t(n) * std::size_t(n), 0.0);
-  im_.assign(std::size_t(n) * std::size_t(n), 0.0);
+  const std::size_t N = std::size_t(n);
+  stride_ = (N + 7) / 8 * 8;
+  re_.assign(N * stride_, 0.0);
+  im_.assign(N * stride_, 0.0);
   bool slanted = false;
   const double step = 2 * kPi / period_nm;  // angular frequency of kx = 1, per nm
   std::vector<cd> fx(static_cast<std::size_t>(n)), fy(static_cast<std::size_t>(n));
@@ -127,8 +154,8 @@ MaskSpectrum::MaskSpectrum(const std::vector<Polygon>& polygons, const Window& w
           for (int a = 0; a < n; ++a)
             for (int b = 0; b < n; ++b) {
               const cd v = sign * slanted_edge(step * (a - half), step * (b - half), xa, ya, xb, yb);
-              re_[std::size_t(a) * std::size_t(n) + std::size_t(b)] += v.real();
-              im_[std::size_t(a) * std::size_t(n) + std::size_t(b)] += v.imag();
+              re_[std::size_t(a) * stride_ + std::size_t(b)] += v.real();
+              im_[std::size_t(a) * stride_ + std::size_t(b)] += v.imag();
             }
         }
       }
@@ -138,23 +165,22 @@ MaskSpectrum::MaskSpectrum(const std::vector<Polygon>& polygons, const Window& w
   // bit (each factor's values at -k are the conjugates of those at k, to the bit, and so are
   // their products and sums): without slanted edges only kx >= 0 is formed and the rest copied.
   // A slanted edge's sums are not symmetric to the bit; with one, every kx is formed.
-  const int from = slanted ? 0 : half;
-  std::vector<double> gr(static_cast<std::size_t>(n)), gi(static_cast<std::size_t>(n));
+  const std::size_t stride = stride_, heights = height.size();
+  std::vector<double> fr(heights * N), fi(heights * N), gr(heights * stride, 0.0), gi(heights * stride, 0.0);
+  std::size_t k = 0;
   for (const auto& [y, r] : height) {
     edge_integrals(step, 0, y, half, 1.0, fy.data());
-    for (int b = 0; b < n; ++b) gr[std::size_t(b)] = fy[std::size_t(b)].real(), gi[std::size_t(b)] = fy[std::size_t(b)].imag();
-    const std::vector<cd>& f = rows[r];
-    for (int a = from; a < n; ++a) {
-      const std::size_t row = std::size_t(a) * std::size_t(n);
-      add_product(f[std::size_t(a)].real(), f[std::size_t(a)].imag(), gr.data(), gi.data(), &re_[row], &im_[row],
-                  std::size_t(n));
-    }
+    for (std::size_t b = 0; b < N; ++b) gr[k * stride + b] = fy[b].real(), gi[k * stride + b] = fy[b].imag();
+    for (std::size_t a = 0; a < N; ++a) fr[k * N + a] = rows[r][a].real(), fi[k * N + a] = rows[r][a].imag();
+    ++k;
   }
+  const std::size_t from = slanted ? 0 : std::size_t(half);
+  add_products(fr.data(), fi.data(), gr.data(), gi.data(), heights, N, stride, from, re_.data(), im_.data());
   if (!slanted)
     for (int a = 0; a < half; ++a)
       for (int b = 0; b < n; ++b) {
-        const std::size_t to = std::size_t(a) * std::size_t(n) + std::size_t(b);
-        const std::size_t mirror = std::size_t(n - 1 - a) * std::size_t(n) + std::size_t(n - 1 - b);
+        const std::size_t to = std::size_t(a) * stride_ + std::size_t(b);
+        const std::size_t mirror = std::size_t(n - 1 - a) * stride_ + std::size_t(n - 1 - b);
         re_[to] = re_[mirror];
         im_[to] = -im_[mirror];
       }

@@ -28,15 +28,16 @@ class MaskSpectrum {
   int half() const { return half_; }
   double period() const { return period_; }
   std::complex<double> at(int kx, int ky) const {
-    const std::size_t k = std::size_t(kx + half_) * std::size_t(2 * half_ + 1) + std::size_t(ky + half_);
+    const std::size_t k = std::size_t(kx + half_) * stride_ + std::size_t(ky + half_);
     return {re_[k], im_[k]};
   }
 
  private:
   int half_;
   double period_;
-  // [(kx + half) * n + ky + half], real and imaginary parts apart (the products that fill
-  // them are then plain loops over doubles, which the compiler vectorises).
+  // [(kx + half) * stride + ky + half], real and imaginary parts apart, each row padded with
+  // zeros to a multiple of 8 (the products that fill them run 8 at a time).
+  std::size_t stride_ = 0;
   std::vector<double> re_, im_;
 };
 
