@@ -249,35 +249,47 @@ LineProfile::LineProfile(const LineKernels& lk, const MaskSpectrum& mask, double
   *this = std::move(batch(lk, {Probe{&mask, px, py, dx, dy}}).front());
 }
 
-std::vector<LineProfile> LineProfile::batch(const LineKernels& lk, const std::vector<Probe>& probes) {
-  const Kernels& kernels = lk.kernels();
-  std::vector<LineProfile> out;
-  out.reserve(probes.size());
-  for (const Probe& p : probes) {
-    out.push_back(LineProfile(p.px, p.py));
-    LineProfile& line = out.back();
-    line.direction(p.dx, p.dy);
-    if (!line.axis_) {
-      line.owned_ = std::make_shared<const AerialImage>(kernels, *p.mask);
-      line.image_ = line.owned_.get();
-      continue;
+std::vector<LineProfile> LineProfile::batch(const LineKernels& kernels, const std::vector<Probe>& probes) {
+  return std::move(batch(std::vector<const LineKernels*>{&kernels}, probes).front());
+}
+
+std::vector<std::vector<LineProfile>> LineProfile::batch(const std::vector<const LineKernels*>& sets,
+                                                         const std::vector<Probe>& probes) {
+  if (sets.empty()) throw std::invalid_argument("line profiles: no kernels");
+  const Kernels& first = sets.front()->kernels();
+  for (const LineKernels* lk : sets)
+    if (lk->kernels().period != first.period || lk->kernels().size != first.size)
+      throw std::invalid_argument("line profiles: the kernel sets differ in period or size");
+  std::vector<std::vector<LineProfile>> out(sets.size());
+  for (std::size_t set = 0; set < sets.size(); ++set) {
+    const Kernels& kernels = sets[set]->kernels();
+    out[set].reserve(probes.size());
+    for (const Probe& p : probes) {
+      out[set].push_back(LineProfile(p.px, p.py));
+      LineProfile& line = out[set].back();
+      line.direction(p.dx, p.dy);
+      if (!line.axis_) {
+        line.owned_ = std::make_shared<const AerialImage>(kernels, *p.mask);
+        line.image_ = line.owned_.get();
+        continue;
+      }
+      if (p.mask->period() != kernels.period)
+        throw std::invalid_argument("aerial image: the mask's period is not the kernels' period");
+      if (p.mask->half() < kernels.half())
+        throw std::invalid_argument("aerial image: the mask has fewer frequencies than the kernels");
     }
-    if (p.mask->period() != kernels.period)
-      throw std::invalid_argument("aerial image: the mask's period is not the kernels' period");
-    if (p.mask->half() < kernels.half())
-      throw std::invalid_argument("aerial image: the mask has fewer frequencies than the kernels");
   }
   // As LineProfile(image, ...), with the field K_i(kx, ky) c(kx, ky) never stored: each mask
-  // times the phases across its line is formed once, then each kernel adds its products
-  // frequency by frequency, to every line along the same axis in turn.
-  const int h = kernels.half();
-  const std::size_t n = lk.n_, count = kernels.count();
-  const double w = 2 * kPi / kernels.period;
+  // times the phases across its line is formed once, for every kernel set, then each kernel
+  // adds its products frequency by frequency, to every line along the same axis in turn.
+  const int h = first.half();
+  const std::size_t n = std::size_t(first.size);
+  const double w = 2 * kPi / first.period;
   for (int axis = 0; axis < 2; ++axis) {
     const bool along_x = axis == 0;
     std::vector<std::size_t> mine;
-    for (std::size_t k = 0; k < out.size(); ++k)
-      if (out[k].axis_ && (out[k].dy_ == 0) == along_x) mine.push_back(k);
+    for (std::size_t k = 0; k < probes.size(); ++k)
+      if (out[0][k].axis_ && (out[0][k].dy_ == 0) == along_x) mine.push_back(k);
     if (mine.empty()) continue;
     const std::size_t lines = mine.size(), groups = (lines + kLanes - 1) / kLanes;
     // [((g * n + a) * n + b) * kLanes + j]: line g kLanes + j's mask at a along the line, b
@@ -297,35 +309,40 @@ std::vector<LineProfile> LineProfile::batch(const LineKernels& lk, const std::ve
           mi[at] = v.imag();
         }
     }
-    // [(j * count + i) * n + a]: line j's kernel i at frequency a along the line.
-    std::vector<double> re(lines * count * n), im(lines * count * n);
-    const double* kr = lk.re_[axis].data();
-    const double* ki = lk.im_[axis].data();
-    double sr[kLanes], si[kLanes];
-    for (std::size_t g = 0; g < groups; ++g)
-      for (std::size_t i = 0; i < count; ++i)
-        for (std::size_t a = 0; a < n; ++a) {
-          const std::size_t at = (i * n + a) * n, m = (g * n + a) * n * kLanes;
-          dot_lanes(kr + at, ki + at, &mr[m], &mi[m], lk.lo_[axis][a], std::max(lk.lo_[axis][a], lk.hi_[axis][a]), sr, si);
-          for (std::size_t lane = 0; lane < kLanes && g * kLanes + lane < lines; ++lane) {
-            const std::size_t j = g * kLanes + lane;
-            re[(j * count + i) * n + a] = sr[lane];
-            im[(j * count + i) * n + a] = si[lane];
+    for (std::size_t set = 0; set < sets.size(); ++set) {
+      const LineKernels& lk = *sets[set];
+      const std::size_t count = lk.kernels().count();
+      // [(j * count + i) * n + a]: line j's kernel i at frequency a along the line.
+      std::vector<double> re(lines * count * n), im(lines * count * n);
+      const double* kr = lk.re_[axis].data();
+      const double* ki = lk.im_[axis].data();
+      double sr[kLanes], si[kLanes];
+      for (std::size_t g = 0; g < groups; ++g)
+        for (std::size_t i = 0; i < count; ++i)
+          for (std::size_t a = 0; a < n; ++a) {
+            const std::size_t at = (i * n + a) * n, m = (g * n + a) * n * kLanes;
+            dot_lanes(kr + at, ki + at, &mr[m], &mi[m], lk.lo_[axis][a], std::max(lk.lo_[axis][a], lk.hi_[axis][a]),
+                      sr, si);
+            for (std::size_t lane = 0; lane < kLanes && g * kLanes + lane < lines; ++lane) {
+              const std::size_t j = g * kLanes + lane;
+              re[(j * count + i) * n + a] = sr[lane];
+              im[(j * count + i) * n + a] = si[lane];
+            }
           }
-        }
-    std::vector<double> line_re(count * n), line_im(count * n);
-    for (std::size_t j = 0; j < lines; ++j) {
-      const double* r = &re[j * count * n];
-      const double* q = &im[j * count * n];
-      for (std::size_t i = 0; i < count; ++i)
-        for (std::size_t a = 0; a < n; ++a) {
-          const cd c = cd(r[i * n + a], q[i * n + a]) * along[j * n + a];
-          line_re[i * n + a] = c.real();
-          line_im[i * n + a] = c.imag();
-        }
-      LineProfile& line = out[mine[j]];
-      line.omega_ = w * (along_x ? line.dx_ : line.dy_);
-      line.fold(line_re, line_im, kernels.weights, n);
+      std::vector<double> line_re(count * n), line_im(count * n);
+      for (std::size_t j = 0; j < lines; ++j) {
+        const double* r = &re[j * count * n];
+        const double* q = &im[j * count * n];
+        for (std::size_t i = 0; i < count; ++i)
+          for (std::size_t a = 0; a < n; ++a) {
+            const cd c = cd(r[i * n + a], q[i * n + a]) * along[j * n + a];
+            line_re[i * n + a] = c.real();
+            line_im[i * n + a] = c.imag();
+          }
+        LineProfile& line = out[set][mine[j]];
+        line.omega_ = w * (along_x ? line.dx_ : line.dy_);
+        line.fold(line_re, line_im, lk.kernels().weights, n);
+      }
     }
   }
   return out;

@@ -309,15 +309,17 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
         const double px = (2 * cx - double(ox)) * half_dbu, py = (2 * cy - double(oy)) * half_dbu;
         probes.push_back({&masks.back(), px, py, g.x2[i] - g.x1[i], g.y2[i] - g.y1[i]});
       }
-      const std::vector<LineProfile> focus_lines = LineProfile::batch(focused, probes);
-      const std::vector<LineProfile> defocus_lines =
-          window && defocused ? LineProfile::batch(*defocused, probes) : std::vector<LineProfile>();
+      std::vector<const LineKernels*> sets{&focused};
+      if (window && defocused) sets.push_back(defocused.get());
+      std::vector<std::vector<LineProfile>> profiles = LineProfile::batch(sets, probes);
+      const std::vector<LineProfile>& focus_lines = profiles[0];
+      const std::vector<LineProfile>& defocus_lines = profiles.back();
       for (std::size_t l = first; l < last; ++l) {
         // A line's cuts, made on first use: [condition: nominal, outer, inner][space]. Gauges of
         // several types on one line read the same cuts; only their drawn cds differ.
         std::optional<Cut> cuts[3][2];
         const LineProfile& line = focus_lines[l - first];
-        const LineProfile& blurred = defocused ? defocus_lines[l - first] : line;
+        const LineProfile& blurred = window && defocused ? defocus_lines[l - first] : line;
         auto reading = [&](int condition, bool space, double drawn) {
           const LineProfile& on = condition == 2 ? blurred : line;
           const double at = condition == 0 ? t : condition == 1 ? t_outer : t_inner;

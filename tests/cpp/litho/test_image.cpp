@@ -168,6 +168,25 @@ TEST(AerialImage, ProfilesMadeTogetherAreTheProfilesMadeAlone) {
     const LineProfile alone(lk, *p.mask, p.px, p.py, p.dx, p.dy);
     for (double t = -200; t <= 200; t += 6.1) ASSERT_EQ(together[j].at(t), alone.at(t)) << j << " " << t;
   }
+  // Two kernel sets (a model's focus and defocused ones) share the masks' layout: each set's
+  // profiles are its own batch's; sets of another size are refused.
+  Kernels scaled = focus();
+  for (auto& v : scaled.values)
+    for (auto& x : v) x *= std::complex<double>(0.6, 0.8);  // a phase: the same image, other fields
+  const LineKernels lk2(scaled);
+  const std::vector<std::vector<LineProfile>> both = LineProfile::batch({&lk, &lk2}, probes);
+  const std::vector<LineProfile> second = LineProfile::batch(lk2, probes);
+  ASSERT_EQ(both.size(), 2u);
+  for (std::size_t j = 0; j < probes.size(); ++j)
+    for (double t = -200; t <= 200; t += 17.3) {
+      ASSERT_EQ(both[0][j].at(t), together[j].at(t)) << j << " " << t;
+      ASSERT_EQ(both[1][j].at(t), second[j].at(t)) << j << " " << t;
+    }
+  Kernels small = focus();
+  small.size -= 2;
+  for (auto& v : small.values) v.resize(std::size_t(small.size) * std::size_t(small.size));
+  const LineKernels lk3(small);
+  EXPECT_THROW(LineProfile::batch({&lk, &lk3}, probes), std::invalid_argument);
   EXPECT_TRUE(LineProfile::batch(lk, {}).empty());
   EXPECT_THROW(LineProfile::batch(lk, {probes[0], Probe{&masks[0], 0, 0, 0, 0}}), std::invalid_argument);
 }

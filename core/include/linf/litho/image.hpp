@@ -87,6 +87,10 @@ class LineProfile {
   // 850 kB a direction) outgrow the L2 cache and a few windows' masks do not, so one window at
   // a time would stream the kernels from memory for every line.
   static std::vector<LineProfile> batch(const LineKernels& kernels, const std::vector<Probe>& probes);
+  // The same for several kernel sets of one period and size (a model's focus and defocused
+  // kernels): [set][probe], each mask's layout made once for all of them.
+  static std::vector<std::vector<LineProfile>> batch(const std::vector<const LineKernels*>& sets,
+                                                     const std::vector<Probe>& probes);
   double at(double t) const;
 
  private:
