@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <optional>
 
@@ -201,6 +202,34 @@ void bind_gauges(py::module_& m) {
       "one) whose points lie within `radius` DBU (L-infinity) of its point; NaN where there is none. x, y, cd:\n"
       "double columns, types: int32 indices (internal, external, sandwich, comb, T), one entry a gauge\n"
       "(the gauge table's column views). Returns bytes: one double per asked gauge (array('d')).");
+
+  m.def(
+      "permute_records",
+      [](const py::buffer& data, std::size_t size, const py::buffer& order) {
+        const py::buffer_info d = data.request();
+        if (d.ndim != 1 || d.strides[0] != d.itemsize) throw py::value_error("permute_records: the data must be contiguous");
+        const std::size_t bytes = std::size_t(d.size) * std::size_t(d.itemsize);
+        if (size == 0 || bytes % size != 0) throw py::value_error("permute_records: the data is not whole records");
+        const Column<std::int32_t> o = column_of<std::int32_t>(order, "order");
+        const std::size_t n = bytes / size;
+        if (o.size() != n) throw py::value_error("permute_records: the order must name every record once");
+        char* to = nullptr;
+        py::bytes out = blank_bytes(bytes, to);
+        const char* from = static_cast<const char*>(d.ptr);
+        std::vector<bool> seen(n, false);
+        for (std::size_t k = 0; k < n; ++k) {
+          const std::int32_t i = o[k];
+          if (i < 0 || std::size_t(i) >= n || seen[std::size_t(i)])
+            throw py::value_error("permute_records: the order must name every record once");
+          seen[std::size_t(i)] = true;
+          std::memcpy(to + k * size, from + std::size_t(i) * size, size);
+        }
+        return out;
+      },
+      py::arg("data"), py::arg("size"), py::arg("order"),
+      "The gauge table's records in a new order: `data` holds records of `size` bytes (the table's reals\n"
+      "or ints), `order` (array('i')) names each record once; record k of the result is record order[k].\n"
+      "ValueError when the data is not whole records or the order is not a permutation.");
 }
 
 }  // namespace linf::bind

@@ -149,6 +149,28 @@ class GaugeTableColumns(unittest.TestCase):
         empty.spill()
         self.assertEqual(list(empty), [])
 
+    def test_records_in_another_order(self):
+        # core.permute_records (the printability ranking's reorder): record k of the result is
+        # record order[k], for the table's reals and ints alike; a non-permutation is refused.
+        reals, ints = self.table.columns()
+        n = len(self.rows)
+        order = array("i", reversed(range(n)))
+        order[0], order[n // 2] = order[n // 2], order[0]
+        new_reals = array("d")
+        new_reals.frombytes(core.permute_records(reals, 80, order))
+        new_ints = array("i")
+        new_ints.frombytes(core.permute_records(ints, 52, order))
+        for k in (0, 1, n // 2, n - 1):
+            self.assertEqual(new_reals[10 * k:10 * k + 10], reals[10 * order[k]:10 * order[k] + 10])
+            self.assertEqual(new_ints[13 * k:13 * k + 13], ints[13 * order[k]:13 * order[k] + 13])
+        self.assertEqual(sorted(new_reals), sorted(reals))
+        for bad, says in [(array("i", [0] * n), "every record once"), (array("i", range(n - 1)), "every record once"),
+                          (array("i", [n] + list(range(1, n))), "every record once")]:
+            with self.assertRaisesRegex(ValueError, says):
+                core.permute_records(reals, 80, bad)
+        with self.assertRaisesRegex(ValueError, "whole records"):
+            core.permute_records(reals, 7, order)
+
     def test_flat_arrays_that_do_not_add_up_are_refused(self):
         # The core reads the arrays in place: each way they can disagree is a ValueError.
         box = [0, 0, 10, 0, 10, 10, 0, 10]

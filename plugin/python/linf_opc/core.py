@@ -56,6 +56,8 @@ litho_window_images = _core.litho_window_images
 litho_contours = _core.litho_contours
 # Arithmetic on one segment, called once a drawn edge: always in this process.
 cut_to_drawable = _core.cut_to_drawable
+# A copy of the gauge table's records in another order: always in this process.
+permute_records = _core.permute_records
 
 
 @contextlib.contextmanager

@@ -175,11 +175,14 @@ def rescore(result, polygons, dbu_um, model, threads=0):
                                 kernels, cal["threshold"], ids, threads, model.defocus, DOSE)
     s, printed, band = array("d", r["score"]), array("d", r["printed_cd"]), array("d", r["pv_band"])
     fails_sim = array("B", r["fails"])
-    nan = float("nan")
-    score = array("d", [nan]) * n
-    pcd, pvb, fl = array("d", [nan]) * n, array("d", [nan]) * n, array("B", bytes(n))
-    for k, i in enumerate(idx):
-        score[i], pcd[i], pvb[i], fl[i] = s[k], printed[k], band[k], fails_sim[k]
+    if every:
+        score, pcd, pvb, fl = s, printed, band, fails_sim
+    else:
+        nan = float("nan")
+        score = array("d", [nan]) * n
+        pcd, pvb, fl = array("d", [nan]) * n, array("d", [nan]) * n, array("B", bytes(n))
+        for k, i in enumerate(idx):
+            score[i], pcd[i], pvb[i], fl[i] = s[k], printed[k], band[k], fails_sim[k]
     # Read: measured or failed at some condition. Not read: no edge within reach of the point (a
     # space or width wider than half the window: the core's score there is only a lower bound,
     # below 1 for a drawn cd above half the window, which would put wide spaces first) or not
@@ -189,19 +192,23 @@ def rescore(result, polygons, dbu_um, model, threads=0):
     for i in idx:
         read[i] = pcd[i] == pcd[i] or fl[i] != 0
     top = max((score[i] for i in idx if read[i]), default=1.0)
-    order = sorted(range(n), key=lambda i: (0, score[i], i) if read[i] else (1, 0.0, i))
+    # Sorted by score, the unread after every read one; the sort is stable, so ties keep the
+    # geometric rank.
+    inf = float("inf")
+    key = array("d", (score[i] if read[i] else inf for i in range(n)))
+    order = sorted(range(n), key=key.__getitem__)
     for i in range(n):
         if not read[i]:
             score[i] = top
     # The table holds scores in DBU (every writer multiplies by the DBU): the ratio is held
     # divided by it, so that files and reports show the ratio itself.
     highest = max(score) if n else 1.0
-    # Whole records moved in the new order, then the changed columns written over (a Python loop
-    # over every field of 83,458 rows took a third of a second).
-    rbytes, ibytes = reals.cast("B"), ints.cast("B")
+    # Whole records moved in the new order (core.permute_records), then the changed columns
+    # written over (a Python loop over every field of 83,458 rows took a third of a second).
+    perm = array("i", order)
     new_reals, new_ints = array("d"), array("i")
-    new_reals.frombytes(b"".join(rbytes[80 * i:80 * i + 80] for i in order))
-    new_ints.frombytes(b"".join(ibytes[52 * i:52 * i + 52] for i in order))
+    new_reals.frombytes(core.permute_records(reals, 80, perm))
+    new_ints.frombytes(core.permute_records(ints, 52, perm))
     geo = new_reals[7::10]
     new_reals[7::10] = array("d", (score[i] / dbu_um for i in order))
     new_reals[8::10] = array("d", (score[i] / highest if highest > 0 else 0.0 for i in order))
