@@ -14,7 +14,7 @@ Rules and their reasons: docs/design.md, "Printability in the flow".
 import os
 import time
 from array import array
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import Future, ThreadPoolExecutor
 
 from . import core
 from . import selection as selection_stage
@@ -33,10 +33,33 @@ FAILS = ("none", "pinch", "bridge")
 
 class Model:
     """A lithography model chosen by name: focus kernels, defocus kernels (None: a dose-only
-    process window) and what to call it."""
+    process window) and what to call it. The kernels may be given as futures (a preset's, being
+    computed while the layer is read); reading them waits."""
 
     def __init__(self, name, kernels, defocus, defocus_nm, source):
-        self.name, self.kernels, self.defocus, self.defocus_nm, self.source = name, kernels, defocus, defocus_nm, source
+        self.name, self._kernels, self._defocus, self.defocus_nm, self.source = name, kernels, defocus, defocus_nm, source
+
+    @property
+    def kernels(self):
+        if isinstance(self._kernels, Future):
+            self._kernels = self._kernels.result()
+        return self._kernels
+
+    @property
+    def defocus(self):
+        if isinstance(self._defocus, Future):
+            self._defocus = self._defocus.result()
+        return self._defocus
+
+    def __getstate__(self):
+        return dict(self.__dict__, _kernels=self.kernels, _defocus=self.defocus)
+
+
+# Computes the presets' kernels beside the command's own work: two independent
+# eigen-decompositions (the core lets go of Python's lock), started as soon as the name is read,
+# done by the time the gauges are ranked (both cores are rarely both busy while the layer is
+# read and the diagram built).
+_KERNELS = ThreadPoolExecutor(2, thread_name_prefix="linf_opc-kernels")
 
 
 def models_dir():
@@ -65,14 +88,9 @@ def model_of(args):
     if text in (None, ""):
         return None
     if text in DEFOCUS_NM:
-        try:
-            # Two independent eigen-decompositions: on two threads (the core lets go of Python's lock).
-            with ThreadPoolExecutor(2) as pool:
-                blurred_job = pool.submit(core.litho_kernels, preset=text, defocus=DEFOCUS_NM[text])
-                focus = core.litho_kernels(preset=text)
-                blurred = blurred_job.result()
-        except ValueError as e:
-            raise UsageError("litho=%s: %s" % (text, e))
+        # A preset's optics are fixed and valid: nothing here can fail on the user's input.
+        focus = _KERNELS.submit(core.litho_kernels, preset=text)
+        blurred = _KERNELS.submit(core.litho_kernels, preset=text, defocus=DEFOCUS_NM[text])
         return Model(text, focus, blurred, DEFOCUS_NM[text], "preset")
     folder = text
     if text == "iccad13":
