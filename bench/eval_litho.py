@@ -131,7 +131,7 @@ for preset in presets:
     kernels = model.kernels
     P = kernels.period
     try:
-        cal = _core.calibrate_threshold(kernels, width * dbu_nm, pitch * dbu_nm)
+        cal = _core.calibrate_threshold(kernels, width * dbu_nm, pitch * dbu_nm, model.blur_nm)
     except ValueError as e:  # the model cannot print the layer's own lines: no score to compare
         log("eval_litho: %s: %s" % (preset, e))
         rows.append(("litho " + preset, "not resolved", None, None, "", ""))
@@ -152,7 +152,7 @@ for preset in presets:
         pts.append(cy[i])
     ids = array("Q", _core.gauge_contexts(flat, pts, radius, threads)) if radius > 0 else None  # radius=0: every gauge
     r = core.gauge_printability(flat, dbu_nm, col(4), col(5), col(0), col(1), col(2), col(3), types, col(6),
-                                kernels, cal["threshold"], ids, threads, model.defocus, litho.DOSE)
+                                kernels, cal["threshold"], ids, threads, model.defocus, litho.DOSE, model.blur_nm)
     s = array("d", r["score"])
     fails = array("B", r["fails"])
     printed = array("d", r["printed_cd"])

@@ -74,22 +74,23 @@ void bind_litho(py::module_& m) {
   m.def(
       "litho_window_images",
       [](const py::object& polys, double dbu_nm, const std::vector<double>& cx, const std::vector<double>& cy,
-         const litho::Kernels& kernels, int m, int threads) {
+         const litho::Kernels& kernels, int m, int threads, double blur) {
         const LayerInput in(polys);
         std::vector<std::vector<double>> images;
         {
           py::gil_scoped_release unlocked;
-          images = litho::window_images(in.flat(), dbu_nm, cx, cy, kernels, m, threads);
+          images = litho::window_images(in.flat(), dbu_nm, cx, cy, kernels, m, threads, blur);
         }
         py::list out;
         for (const auto& v : images) out.append(bytes_of(v));
         return out;
       },
       py::arg("polygons"), py::arg("dbu"), py::arg("cx"), py::arg("cy"), py::arg("kernels"), py::arg("m") = 128,
-      py::arg("threads") = 0,
+      py::arg("threads") = 0, py::arg("blur") = 0.0,
       "Pictures' aerial images: for each centre (cx[k], cy[k]) in DBU the window of the kernels' period centred\n"
       "there, as gauge_printability clips it, imaged on an m x m grid: bytes of float64, value [j * m + i] at the\n"
-      "window's corner (the centre minus half the period) + (i, j) * period / m, in nm.");
+      "window's corner (the centre minus half the period) + (i, j) * period / m, in nm; blurred by the resist's\n"
+      "Gaussian `blur` (standard deviation, nm) in both directions.");
 
   m.def(
       "litho_contours",
@@ -113,16 +114,17 @@ void bind_litho(py::module_& m) {
 
   m.def(
       "calibrate_threshold",
-      [](const litho::Kernels& k, double width, double pitch) {
-        const litho::Calibration c = litho::calibrate_threshold(k, width, pitch);
+      [](const litho::Kernels& k, double width, double pitch, double blur) {
+        const litho::Calibration c = litho::calibrate_threshold(k, width, pitch, blur);
         py::dict d;
         d["threshold"] = c.threshold;
         d["pitch"] = c.pitch;
         d["contrast"] = c.contrast;
         return d;
       },
-      py::arg("kernels"), py::arg("width"), py::arg("pitch"),
-      "The resist threshold at which endless lines of `width` nm at `pitch` nm print at their drawn width:\n"
+      py::arg("kernels"), py::arg("width"), py::arg("pitch"), py::arg("blur") = 0.0,
+      "The resist threshold at which endless lines of `width` nm at `pitch` nm print at their drawn width, the\n"
+      "image blurred across them by the resist's Gaussian `blur` (standard deviation, nm):\n"
       "{'threshold', 'pitch' (as used), 'contrast'}. ValueError when the model does not resolve them.");
 
   m.def(
@@ -130,7 +132,7 @@ void bind_litho(py::module_& m) {
       [](const py::object& polys, double dbu_nm, const py::buffer& cx, const py::buffer& cy, const py::buffer& x1,
          const py::buffer& y1, const py::buffer& x2, const py::buffer& y2, const py::buffer& types, const py::buffer& cd,
          const litho::Kernels& kernels, double threshold, const py::object& contexts, int threads,
-         const litho::Kernels* defocus, double dose) {
+         const litho::Kernels* defocus, double dose, double blur) {
         const LayerInput in(polys);
         const auto ccx = column_of<double>(cx, "cx"), ccy = column_of<double>(cy, "cy");
         const auto cx1 = column_of<double>(x1, "x1"), cy1 = column_of<double>(y1, "y1");
@@ -152,7 +154,7 @@ void bind_litho(py::module_& m) {
         const auto t0 = std::chrono::steady_clock::now();
         {
           py::gil_scoped_release unlocked;
-          p = litho::printability(in.flat(), dbu_nm, g, litho::PrintModel{&kernels, threshold, defocus, dose}, threads);
+          p = litho::printability(in.flat(), dbu_nm, g, litho::PrintModel{&kernels, threshold, defocus, dose, blur}, threads);
         }
         py::dict d;
         d["printed_cd"] = bytes_of(p.printed_cd);
@@ -172,13 +174,14 @@ void bind_litho(py::module_& m) {
       py::arg("polygons"), py::arg("dbu"), py::arg("cx"), py::arg("cy"), py::arg("x1"), py::arg("y1"), py::arg("x2"),
       py::arg("y2"), py::arg("types"), py::arg("cd"), py::arg("kernels"), py::arg("threshold"),
       py::arg("contexts") = py::none(), py::arg("threads") = 0, py::arg("defocus") = py::none(),
-      py::arg("dose") = 0.0,
+      py::arg("dose") = 0.0, py::arg("blur") = 0.0,
       "Printability of gauges (docs/design.md, 'Printability of gauges'). polygons: the merged layer as\n"
       "gauges_polygons takes it (DBU); dbu in nm; cx..cd: float64 columns in DBU (strided views of the gauge\n"
       "table work), types: int32 (1 external = a space, the others a width); kernels from litho_kernels and\n"
       "the resist threshold; contexts: optional array('Q') of ids (gauges of one type and id share one\n"
       "simulation); dose > 0: the process window, corners at dose 1 - dose with the `defocus` kernels (None: in\n"
-      "focus) and 1 + dose in focus. Returns bytes columns 'printed_cd' (float64 nm, NaN when not measured),\n"
+      "focus) and 1 + dose in focus; blur: the resist's Gaussian (standard deviation, nm), each reading's image\n"
+      "blurred along its line. Returns bytes columns 'printed_cd' (float64 nm, NaN when not measured),\n"
       "'fails' (uint8: 0 none, 1 pinch, 2 bridge; the worst over nominal and the corners), 'fails_nominal',\n"
       "'pv_band' (float64 nm, NaN without a window), 'score' (float64, lower = worse) and 'simulations',\n"
       "'shared', 'images' (line profiles computed: simulated gauges on one line share one), 'seconds'.");

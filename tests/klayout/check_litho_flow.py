@@ -146,7 +146,8 @@ picked = [k for k in range(min(len(body), 200)) if k < 20 or fails[k] != "none"]
 col = lambda name: array("d", (float(body[k][head[name]]) / ly.dbu for k in picked))  # noqa: E731
 types = array("i", (gauge_stage.TYPES.index(body[k][head["type"]]) for k in picked))
 alone = core.gauge_printability(polys.flat(), dbu_nm, col("cx"), col("cy"), col("x1"), col("y1"), col("x2"), col("y2"),
-                                types, col("cd"), model.kernels, s["threshold"], None, 0, model.defocus, litho.DOSE)
+                                types, col("cd"), model.kernels, s["threshold"], None, 0, model.defocus, litho.DOSE,
+                                model.blur_nm)
 p_alone, f_alone = array("d", alone["printed_cd"]), array("B", alone["fails"])
 mismatch = []
 for j, k in enumerate(picked):

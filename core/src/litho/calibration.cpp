@@ -12,7 +12,7 @@
 
 namespace linf::litho {
 
-Calibration calibrate_threshold(const Kernels& kernels, double width, double pitch) {
+Calibration calibrate_threshold(const Kernels& kernels, double width, double pitch, double blur) {
   const double period = kernels.period;
   if (!(width > 0) || !(pitch > width) || !(pitch <= period)) {
     std::ostringstream s;
@@ -36,7 +36,8 @@ Calibration calibrate_threshold(const Kernels& kernels, double width, double pit
   }
   const AerialImage image(kernels, MaskSpectrum(grating, Window{{0, 0}, pm}, period, kernels.half()));
   const double centre = 0.5 * c.pitch;
-  const LineProfile across(image, centre, 0.5 * period, 1, 0);
+  LineProfile across(image, centre, 0.5 * period, 1, 0);
+  across.blur(blur);
   c.threshold = across.at(width / 2);
   const double line = across.at(0), space = across.at(c.pitch / 2);
   c.contrast = (line - space) / (line + space);

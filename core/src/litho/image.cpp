@@ -403,8 +403,101 @@ void LineProfile::fold(const std::vector<double>& re, const std::vector<double>&
   }
 }
 
+namespace {
+
+// The plan of a forward m x m transform, made once a size (FFTW_ESTIMATE, under the planner's lock).
+fftw_plan forward_plan(int m) {
+  static std::map<int, fftw_plan> made;
+  std::lock_guard<std::mutex> lock(planner_lock());
+  auto it = made.find(m);
+  if (it != made.end()) return it->second;
+  fftw_complex* a = fftw_alloc_complex(std::size_t(m) * std::size_t(m));
+  const fftw_plan p = fftw_plan_dft_2d(m, m, a, a, FFTW_FORWARD, FFTW_ESTIMATE);
+  fftw_free(a);
+  made.emplace(m, p);
+  return p;
+}
+
+// The spectrum of an m x m grid of real values (value [j * m + i], j along y): [(e mod m) * m
+// + (d mod m)] the coefficient of exp(2 pi i (d x + e y) / P), x = i P / m.
+std::vector<cd> grid_spectrum(const std::vector<double>& values, int m) {
+  const std::size_t mm = std::size_t(m) * std::size_t(m);
+  fftw_complex* a = fftw_alloc_complex(mm);
+  for (std::size_t k = 0; k < mm; ++k) a[k][0] = values[k], a[k][1] = 0;
+  fftw_execute_dft(forward_plan(m), a, a);
+  std::vector<cd> out(mm);
+  for (std::size_t k = 0; k < mm; ++k) out[k] = cd(a[k][0], a[k][1]) / double(mm);
+  fftw_free(a);
+  return out;
+}
+
+}  // namespace
+
+void blur_grid(std::vector<double>& values, int m, double period, double sigma) {
+  if (!(sigma >= 0) || !std::isfinite(sigma)) throw std::invalid_argument("blur: sigma must be a number >= 0");
+  if (m < 1 || values.size() != std::size_t(m) * std::size_t(m)) throw std::invalid_argument("blur: not an m x m grid");
+  if (sigma == 0) return;
+  std::vector<cd> spectrum = grid_spectrum(values, m);
+  const double w = 2 * kPi / period;
+  auto freq = [m](int k) { return k <= m / 2 ? k : k - m; };
+  // Back by the inverse transform's plans (the grid's own: every row nonzero).
+  const GridPlans plans = grid_plans(m, m);
+  const std::size_t mm = std::size_t(m) * std::size_t(m);
+  fftw_complex* a = fftw_alloc_complex(mm);
+  for (int e = 0; e < m; ++e)
+    for (int d = 0; d < m; ++d) {
+      const double u = w * freq(d), v = w * freq(e);
+      const cd c = spectrum[std::size_t(e) * std::size_t(m) + std::size_t(d)] * std::exp(-0.5 * sigma * sigma * (u * u + v * v));
+      a[std::size_t(e) * std::size_t(m) + std::size_t(d)][0] = c.real();
+      a[std::size_t(e) * std::size_t(m) + std::size_t(d)][1] = c.imag();
+    }
+  fftw_execute_dft(plans.along_x, a, a);  // every row along x, then every column along y
+  fftw_execute_dft(plans.along_y, a, a);
+  for (std::size_t k = 0; k < mm; ++k) values[k] = a[k][0];
+  fftw_free(a);
+}
+
+void LineProfile::blur(double sigma) {
+  if (!(sigma >= 0) || !std::isfinite(sigma)) throw std::invalid_argument("line profile: the blur must be a number >= 0");
+  if (sigma == 0) return;
+  if (axis_) {
+    for (std::size_t d = 1; d < g_.size(); ++d) g_[d] *= std::exp(-0.5 * sigma * sigma * (omega_ * double(d)) * (omega_ * double(d)));
+    return;
+  }
+  // The image's frequencies reach 2h a side: a grid of more than 4h samples holds them exactly.
+  const int h = image_->half(), q = 2 * h;
+  int m = 8;
+  while (m <= 2 * q) m *= 2;
+  const std::vector<cd> full = grid_spectrum(image_->grid(m, 1), m);
+  const double w = 2 * kPi / image_->period();
+  const std::size_t side = std::size_t(2 * q + 1);
+  spectrum_.assign(side * side, cd(0));
+  for (int d = -q; d <= q; ++d)
+    for (int e = -q; e <= q; ++e) {
+      const double along = w * (d * dx_ + e * dy_);
+      spectrum_[std::size_t(d + q) * side + std::size_t(e + q)] =
+          full[std::size_t((e + m) % m) * std::size_t(m) + std::size_t((d + m) % m)] * std::exp(-0.5 * sigma * sigma * along * along);
+    }
+  q_ = q;
+  omega_ = w;
+}
+
 double LineProfile::at(double t) const {
-  if (!axis_) return image_->at(px_ + t * dx_, py_ + t * dy_);
+  if (!axis_ && spectrum_.empty()) return image_->at(px_ + t * dx_, py_ + t * dy_);
+  if (!axis_) {
+    // The blurred image's band-limited sum at the point, frequency along x outermost.
+    const std::size_t side = std::size_t(2 * q_ + 1);
+    std::vector<cd> ex(side), ey(side);
+    phases(omega_ * (px_ + t * dx_), q_, ex.data());
+    phases(omega_ * (py_ + t * dy_), q_, ey.data());
+    cd sum = 0;
+    for (std::size_t d = 0; d < side; ++d) {
+      cd row = 0;
+      for (std::size_t e = 0; e < side; ++e) row += spectrum_[d * side + e] * ey[e];
+      sum += row * ex[d];
+    }
+    return sum.real();
+  }
   // g_0 + 2 Re sum_{d >= 1} g_d z^d, z = exp(i omega t), as z sum_r z^r Q_r(z^4) with
   // Q_r(w) = sum_k g_(4k + r + 1) w^k: four Horner chains side by side (one chain waits on each
   // product before the next; a reading evaluates a line about 40 times).

@@ -168,6 +168,7 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
   if (!(model.threshold > 0)) fail("the resist threshold must be positive");
   if (!(dbu_nm > 0)) fail("the database unit must be positive");
   if (!(model.dose >= 0 && model.dose < 1)) fail("the dose latitude must lie in [0, 1)");
+  if (!(model.blur >= 0) || !std::isfinite(model.blur)) fail("the resist blur must be a number >= 0");
   if (model.defocus && (model.defocus->count() == 0 || model.defocus->size != kernels.size ||
                         model.defocus->period != kernels.period))
     fail("the defocus kernels must have the focus kernels' period and size");
@@ -312,6 +313,8 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
       std::vector<const LineKernels*> sets{&focused};
       if (window && defocused) sets.push_back(defocused.get());
       std::vector<std::vector<LineProfile>> profiles = LineProfile::batch(sets, probes);
+      for (std::vector<LineProfile>& set : profiles)
+        for (LineProfile& line : set) line.blur(model.blur);
       const std::vector<LineProfile>& focus_lines = profiles[0];
       const std::vector<LineProfile>& defocus_lines = profiles.back();
       for (std::size_t l = first; l < last; ++l) {
@@ -364,10 +367,11 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
 
 std::vector<std::vector<double>> window_images(const FlatPolygons& layer, double dbu_nm, const std::vector<double>& cx,
                                                const std::vector<double>& cy, const Kernels& kernels, int m,
-                                               int threads) {
+                                               int threads, double blur) {
   if (kernels.count() == 0) fail("the model has no kernels");
   if (!(dbu_nm > 0)) fail("the database unit must be positive");
   if (m < kernels.size) fail("a picture's grid must be at least the kernels' size");
+  if (!(blur >= 0) || !std::isfinite(blur)) fail("the resist blur must be a number >= 0");
   if (cx.size() != cy.size()) fail("the centres' x and y have different lengths");
   const double P = kernels.period, half_dbu = dbu_nm / 2;
   std::int64_t W = std::int64_t(std::floor(P / half_dbu + 1e-9));
@@ -379,6 +383,7 @@ std::vector<std::vector<double>> window_images(const FlatPolygons& layer, double
     const std::int64_t ox = std::int64_t(std::llround(2 * cx[k])) - W / 2, oy = std::int64_t(std::llround(2 * cy[k])) - W / 2;
     const AerialImage image(kernels, MaskSpectrum(shapes.clip(ox, oy, W), Window{{ox, oy}, half_dbu}, P, kernels.half()));
     out[k] = image.grid(m, threads);
+    blur_grid(out[k], m, P, blur);
   }
   return out;
 }

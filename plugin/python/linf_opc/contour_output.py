@@ -34,7 +34,7 @@ def contour_edges(polygons, dbu_um, model, threshold, boxes):
     lo, hi = m // 4, 3 * m // 4 + 1
     xs = [(b[0] + b[2]) / 2.0 for b in boxes]
     ys = [(b[1] + b[3]) / 2.0 for b in boxes]
-    images = core.litho_window_images(core_input(polygons), dbu_nm, xs, ys, model.kernels, m)
+    images = core.litho_window_images(core_input(polygons), dbu_nm, xs, ys, model.kernels, m, blur=model.blur_nm)
     step = P / m / dbu_nm  # DBU a grid unit
     out = []
     for k, b in enumerate(boxes):

@@ -27,17 +27,23 @@ from .polygons import core_input
 # scanner class; euv: 30 nm, the same share (0.24) of lambda / NA^2 (124 nm at 13.5 nm, NA 0.33).
 DOSE = 0.02
 DEFOCUS_NM = {"duv193": 25.0, "euv": 30.0}
+# The resist's blur per preset (a Gaussian's standard deviation, nm): the acid's diffusion in a
+# chemically amplified resist, usually quoted at 10-20 nm for 193 nm immersion resists and 5-15 nm
+# for EUV ones; each preset takes the low end. Kernel folders (iccad13 too) have none: the
+# contest's model is a bare threshold.
+BLUR_NM = {"duv193": 10.0, "euv": 5.0}
 PRESETS = ("duv193", "euv", "iccad13")
 FAILS = ("none", "pinch", "bridge")
 
 
 class Model:
     """A lithography model chosen by name: focus kernels, defocus kernels (None: a dose-only
-    process window) and what to call it. The kernels may be given as futures (a preset's, being
-    computed while the layer is read); reading them waits."""
+    process window), the resist's blur (nm) and what to call it. The kernels may be given as
+    futures (a preset's, being computed while the layer is read); reading them waits."""
 
-    def __init__(self, name, kernels, defocus, defocus_nm, source):
+    def __init__(self, name, kernels, defocus, defocus_nm, source, blur_nm=0.0):
         self.name, self._kernels, self._defocus, self.defocus_nm, self.source = name, kernels, defocus, defocus_nm, source
+        self.blur_nm = blur_nm
 
     @property
     def kernels(self):
@@ -91,7 +97,7 @@ def model_of(args):
         # A preset's optics are fixed and valid: nothing here can fail on the user's input.
         focus = _KERNELS.submit(core.litho_kernels, preset=text)
         blurred = _KERNELS.submit(core.litho_kernels, preset=text, defocus=DEFOCUS_NM[text])
-        return Model(text, focus, blurred, DEFOCUS_NM[text], "preset")
+        return Model(text, focus, blurred, DEFOCUS_NM[text], "preset", BLUR_NM[text])
     folder = text
     if text == "iccad13":
         base = models_dir()
@@ -168,7 +174,7 @@ def rescore(result, polygons, dbu_um, model, threads=0):
     width_nm = result.typical_width * dbu_nm
     pitch_nm = selection_stage.pitch_of(table) * dbu_nm
     try:
-        cal = core.calibrate_threshold(kernels, width_nm, pitch_nm)
+        cal = core.calibrate_threshold(kernels, width_nm, pitch_nm, model.blur_nm)
     except ValueError as e:
         raise UsageError("litho=%s cannot print the layer's typical line (%.4g nm at a pitch of %.4g nm): %s"
                          % (model.name, width_nm, pitch_nm, e))
@@ -190,7 +196,7 @@ def rescore(result, polygons, dbu_um, model, threads=0):
     ids = array("Q")
     ids.frombytes(core.gauge_contexts(flat, pts, P / 2 / dbu_nm))
     r = core.gauge_printability(flat, dbu_nm, col(4), col(5), col(0), col(1), col(2), col(3), types, col(6),
-                                kernels, cal["threshold"], ids, threads, model.defocus, DOSE)
+                                kernels, cal["threshold"], ids, threads, model.defocus, DOSE, model.blur_nm)
     s, printed, band = array("d", r["score"]), array("d", r["printed_cd"]), array("d", r["pv_band"])
     fails_sim = array("B", r["fails"])
     if every:
@@ -244,7 +250,7 @@ def rescore(result, polygons, dbu_um, model, threads=0):
         "model": model.name, "kernels": model.source, "period_nm": P, "threshold": round(cal["threshold"], 9),
         "calibration": {"width_nm": round(width_nm, 6), "pitch_nm": round(cal["pitch"], 6),
                         "contrast": round(cal["contrast"], 6)},
-        "process_window": {"dose": DOSE, "defocus_nm": model.defocus_nm},
+        "process_window": {"dose": DOSE, "defocus_nm": model.defocus_nm}, "resist_blur_nm": model.blur_nm,
         "simulated": len(idx), "not_simulable": n - len(idx), "not_read": n - sum(read), "simulations": r["simulations"], "shared": r["shared"],
         "images": r["images"],
         "fails": {name: p_fail.count(k) for k, name in enumerate(FAILS)},

@@ -49,16 +49,18 @@ def section(table, region, polygons, dbu_um, model, threshold, rows):
     cx, cy = table.centres()
     xs, ys = [cx[i] for i in rows], [cy[i] for i in rows]
     flat = core_input(polygons)
-    focus = core.litho_window_images(flat, dbu_nm, xs, ys, model.kernels, m)
-    blurred = (core.litho_window_images(flat, dbu_nm, xs, ys, model.defocus, m) if model.defocus is not None
+    focus = core.litho_window_images(flat, dbu_nm, xs, ys, model.kernels, m, blur=model.blur_nm)
+    blurred = (core.litho_window_images(flat, dbu_nm, xs, ys, model.defocus, m, blur=model.blur_nm)
+               if model.defocus is not None
                else focus)
     view = (hi - 1 - lo)  # grid units across the view
     s = SIDE / view
     parts = ["<h2>Printability of the most critical contexts (%s)</h2>" % html.escape(model.name),
              "<p>Left: the drawn layer and the gauge's measurement line; right: the printed contour at nominal "
              "dose and focus (solid) and at the process window's corners (dashed: dose %.2f defocused, inner; "
-             "dose %.2f in focus, outer), threshold %.4g. Each panel is the window's centre, %.4g nm across, "
-             "where the simulation is read.</p>" % (1 - DOSE, 1 + DOSE, threshold, P / 2)]
+             "dose %.2f in focus, outer), threshold %.4g%s. Each panel is the window's centre, %.4g nm across, "
+             "where the simulation is read.</p>"
+             % (1 - DOSE, 1 + DOSE, threshold, ", resist blur %g nm" % model.blur_nm if model.blur_nm else "", P / 2)]
     for k, i in enumerate(rows):
         g = table[i]
         # Grid (i, j) lies at the window's corner + (i, j) P / m nm; the corner is the point minus P / 2.

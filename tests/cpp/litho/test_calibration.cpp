@@ -66,6 +66,24 @@ TEST(Calibration, DominantLinePrintsAtItsDrawnWidth) {
   EXPECT_EQ(calibrate_threshold(litho_test::focus(), 160, 500).pitch, 512.0);
 }
 
+// With the resist's blur the lines still print at their drawn width, read with the blur, at a
+// threshold of their own; the blur lowers the grating's contrast; a negative blur is refused.
+TEST(Calibration, BlurredLinesPrintAtTheirDrawnWidth) {
+  const Kernels euv = kernels_from_optics(optics_preset("euv"));
+  const Calibration bare = calibrate_threshold(euv, 22, 64), blurred = calibrate_threshold(euv, 22, 64, 5);
+  EXPECT_LT(blurred.contrast, bare.contrast - 0.02);
+  const Coord period = Coord(euv.period);
+  std::vector<Polygon> lines;
+  for (Coord c = 32; c < period; c += 64) lines.push_back(litho_test::box(c - 11, 0, c + 11, period));
+  const AerialImage im(euv, MaskSpectrum(lines, Window{}, euv.period, euv.half()));
+  LineProfile across(im, 4 * 64 + 32, 100, 1, 0);
+  across.blur(5);
+  const Cut cut = measure(across, blurred.threshold, Across::printed, 64);
+  ASSERT_EQ(cut.outcome, Cut::Outcome::measured);
+  EXPECT_NEAR(cut.width, 22, 1e-5);
+  EXPECT_THROW(calibrate_threshold(euv, 22, 64, -1), std::invalid_argument);
+}
+
 TEST(Calibration, BadOrUnresolvedGratingsAreErrors) {
   const Kernels& k = litho_test::focus();
   EXPECT_EQ(error_of(k, 0, 128), "threshold calibration: a line of 0 nm at a pitch of 128 nm; the width must be positive "

@@ -191,6 +191,53 @@ TEST(AerialImage, ProfilesMadeTogetherAreTheProfilesMadeAlone) {
   EXPECT_THROW(LineProfile::batch(lk, {probes[0], Probe{&masks[0], 0, 0, 0, 0}}), std::invalid_argument);
 }
 
+// The resist's blur along a line is the unblurred profile convolved with the Gaussian (summed
+// here by the trapezoid rule over +-8 sigma, spectrally exact for this band-limited image):
+// along both axes (the polynomial's exact factor) and slanted (the image's spectrum from a grid).
+// A grid blurred in 2-D agrees with a line's blur where the image does not change across the
+// line (endless lines); sigma 0 changes nothing; a negative sigma is refused.
+TEST(AerialImage, BlurIsTheGaussianConvolution) {
+  const AerialImage im = image_of(clip());
+  struct Line {
+    double px, py, dx, dy;
+  };
+  for (const double sigma : {5.0, 20.0})
+    for (const Line& l : {Line{745, 1000, 1, 0}, Line{925.5, 980.25, 0, -1}, Line{1000, 1000, 3, 4}}) {
+      const LineProfile bare(im, l.px, l.py, l.dx, l.dy);
+      LineProfile blurred(im, l.px, l.py, l.dx, l.dy);
+      blurred.blur(sigma);
+      const double h = sigma / 8;
+      double scale = 0;
+      for (double t = -150; t <= 150; t += 10) scale = std::max(scale, bare.at(t));
+      for (double t = -150; t <= 150; t += 9.7) {
+        double sum = 0, weights = 0;
+        for (int k = -64; k <= 64; ++k) {
+          const double u = k * h, w = std::exp(-0.5 * u * u / (sigma * sigma));
+          sum += w * bare.at(t - u);
+          weights += w;
+        }
+        ASSERT_NEAR(blurred.at(t), sum / weights, 1e-9 * scale) << sigma << " " << l.dx << " " << l.dy << " " << t;
+      }
+    }
+  // Endless vertical lines: the image is the same along y, so the 2-D blur is the 1-D one.
+  std::vector<Polygon> lines;
+  for (Coord c = 100; c < 2048; c += 256) lines.push_back(box(c, 0, c + 100, 2048));
+  const AerialImage grating(focus(), MaskSpectrum(lines, Window{}, P, focus().half()));
+  const int m = 128;
+  std::vector<double> grid = grating.grid(m);
+  blur_grid(grid, m, P, 30);
+  LineProfile row(grating, 0, 37 * P / m, 1, 0);
+  row.blur(30);
+  for (int i = 0; i < m; i += 5) ASSERT_NEAR(grid[std::size_t(37 * m + i)], row.at(i * P / m), 1e-12) << i;
+  std::vector<double> same = grating.grid(m);
+  const std::vector<double> before = same;
+  blur_grid(same, m, P, 0);
+  EXPECT_EQ(same, before);
+  LineProfile line(im, 745, 1000, 1, 0);
+  EXPECT_THROW(line.blur(-1), std::invalid_argument);
+  EXPECT_THROW(blur_grid(same, m, P, -1), std::invalid_argument);
+}
+
 // The image of a clip equals the transformed image of each of its 8 transforms at matching
 // points. The tolerance is not a guess: for any mask, |I'(g(q)) - I(q)| <= ||T o g - T|| sum |c|^2
 // (the TCC's symmetry defect, measured from the kernels, times the mask's spectral energy);

@@ -246,6 +246,37 @@ TEST(Printability, ProcessWindowCorners) {
                std::invalid_argument);
 }
 
+// The resist's blur closes narrow gaps sooner: on the line-end gaps above, every gap that
+// bridges bare bridges blurred, and the blurred model bridges a wider one; a narrow line's
+// printed width shrinks. A negative blur is refused.
+TEST(Printability, BlurBridgesWiderGaps) {
+  std::vector<Polygon> layer;
+  Gauges g;
+  std::vector<int> gaps;
+  for (int gap = 200, k = 0; gap >= 10; gap -= 10, ++k) {
+    const Coord y = 3000 * k, a = 1000 - gap / 2;
+    layer.push_back(box(300, y, a, y + 120));
+    layer.push_back(box(a + gap, y, 1700, y + 120));
+    g.add(a + gap / 2.0, y + 60, true, gap, kExternal);
+    gaps.push_back(gap);
+  }
+  const PolygonArrays flat = flat_of(layer);
+  const Printability bare = printability(flat.view(), 1.0, g.columns(false), PrintModel{&focus(), T}, 0);
+  const Printability blurred =
+      printability(flat.view(), 1.0, g.columns(false), PrintModel{&focus(), T, nullptr, 0, 40}, 0);
+  int widest_bare = 0, widest_blurred = 0;
+  for (std::size_t i = 0; i < gaps.size(); ++i) {
+    if (bare.fails[i] == Fail::bridge) EXPECT_EQ(blurred.fails[i], Fail::bridge) << gaps[i];
+    if (bare.fails[i] == Fail::bridge) widest_bare = std::max(widest_bare, gaps[i]);
+    if (blurred.fails[i] == Fail::bridge) widest_blurred = std::max(widest_blurred, gaps[i]);
+  }
+  std::printf("[ litho ] line-end gap of 120 nm wires bridges up to %d nm bare, %d nm with a 40 nm blur\n", widest_bare,
+              widest_blurred);
+  EXPECT_GT(widest_blurred, widest_bare);
+  EXPECT_THROW(printability(flat.view(), 1.0, g.columns(false), PrintModel{&focus(), T, nullptr, 0, -1}, 0),
+               std::invalid_argument);
+}
+
 // Five copies of one pattern, far apart, each with a width and a space gauge. With one context
 // id for the copies: one simulation per type (2), eight gauges shared, and the same results
 // as simulating every copy (10 simulations), which the copies being translates must give.

@@ -16,7 +16,8 @@ struct Calibration {
 // Throws std::invalid_argument when 0 < width < pitch <= period does not hold, or when the
 // model does not resolve the grating: at doses 0.98 and 1.02 (the image times 0.98^2, 1.02^2)
 // the line's middle must stay above the threshold and the space's below, and the profile must
-// cross it once on each side of the line, at the drawn edges.
-Calibration calibrate_threshold(const Kernels& kernels, double width, double pitch);
+// cross it once on each side of the line, at the drawn edges. blur: the resist's Gaussian blur
+// (standard deviation, nm) on the image across the lines, as the gauges are read.
+Calibration calibrate_threshold(const Kernels& kernels, double width, double pitch, double blur = 0);
 
 }  // namespace linf::litho

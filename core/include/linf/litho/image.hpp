@@ -54,6 +54,11 @@ class AerialImage {
 // parts apart, and for each frequency across the line the span of frequencies along it where
 // some kernel is not zero (the pupil's disc: a fifth of the square is zero). The loops over
 // them then run over plain arrays of doubles, which the compiler vectorises.
+// The image on an m x m grid (AerialImage::grid's layout, period `period` nm) blurred in place by
+// a Gaussian of standard deviation `sigma` nm in both directions (a resist's diffusion), by
+// its exact transform on the grid's frequencies. sigma = 0 changes nothing.
+void blur_grid(std::vector<double>& values, int m, double period, double sigma);
+
 class LineKernels {
  public:
   explicit LineKernels(const Kernels& kernels);
@@ -93,6 +98,14 @@ class LineProfile {
                                                      const std::vector<Probe>& probes);
   double at(double t) const;
 
+  // The image blurred along the line by a Gaussian of standard deviation `sigma` nm (a resist's
+  // diffusion, read across the features the line crosses). Along an axis each term g_d takes the
+  // Gaussian's transform exp(-(sigma d omega)^2 / 2), exactly. Off an axis the image's spectrum,
+  // exact from a grid of more than 4h samples a side (the image's frequencies reach 2h), takes it
+  // for each frequency's component along the line, and points are summed from that spectrum.
+  // sigma = 0 changes nothing; a negative or non-finite sigma is std::invalid_argument.
+  void blur(double sigma);
+
  private:
   LineProfile(double px, double py) : px_(px), py_(py) {}
   void direction(double dx, double dy);
@@ -107,6 +120,10 @@ class LineProfile {
   bool axis_ = false;
   double omega_ = 0;                    // 2 pi / P, signed by the direction along the axis
   std::vector<std::complex<double>> g_;  // along an axis: I(t) = g_0 + 2 Re sum_d g_d exp(i omega d t), d = 0..2h
+  // Off an axis and blurred: the blurred image's spectrum, [(d + q) * (2q + 1) + e + q] for
+  // frequencies |d|, |e| <= q = 2h (empty: read the image itself).
+  std::vector<std::complex<double>> spectrum_;
+  int q_ = 0;
 };
 
 }  // namespace linf::litho

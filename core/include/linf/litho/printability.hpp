@@ -43,6 +43,9 @@ struct PrintModel {
   // `defocus` must have the kernels' period and size. dose = 0: nominal only (no pv_band).
   const Kernels* defocus = nullptr;
   double dose = 0;
+  // The resist's blur: every reading's image blurred along its line by a Gaussian of this
+  // standard deviation (nm; LineProfile::blur). 0: a bare threshold on the aerial image.
+  double blur = 0;
 };
 
 enum class Fail : std::uint8_t { none = 0, pinch = 1, bridge = 2 };
@@ -83,10 +86,11 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
 // The aerial images of windows for pictures (the report's printed contours): for each centre
 // (cx, cy) in DBU (on the half-DBU grid, as gauge points), the window of side P centred there
 // exactly as printability() clips it, imaged on an m x m grid: values[k][j * m + i] is the image
-// at the window's corner + (i, j) P / m, the corner being the centre minus P / 2. Throws std::invalid_argument for m below the kernels'
-// size or the bad model input printability() refuses.
+// at the window's corner + (i, j) P / m, the corner being the centre minus P / 2; blurred by the
+// resist's Gaussian `blur` (nm) in both directions (blur_grid). Throws std::invalid_argument for
+// m below the kernels' size or the bad model input printability() refuses.
 std::vector<std::vector<double>> window_images(const FlatPolygons& layer, double dbu_nm, const std::vector<double>& cx,
                                                const std::vector<double>& cy, const Kernels& kernels, int m,
-                                               int threads = 0);
+                                               int threads = 0, double blur = 0);
 
 }  // namespace linf::litho
