@@ -43,22 +43,16 @@ class AerialImage {
   std::vector<std::complex<double>> fields_;  // kernel by kernel, n x n each, kx major
 };
 
-// The image along the line p + t d (d a unit vector), cheap to evaluate many times. Along an
-// axis (the measurement lines of a rectilinear layout) each kernel's field on the line is a 1-D
-// sum over 2h + 1 frequencies, and the image, the weighted sum of their squared moduli, a real
-// trigonometric polynomial of degree 2h in t whose coefficients are formed once: a point then
-// costs 2h complex products whatever the number of kernels. Along another direction each point
-// costs the full 2-D sum of the image.
-// The kernels laid out for line profiles, made once a model: for a line along x and one along
-// y, each kernel's values with the frequency along the line contiguous, real and imaginary
-// parts apart, and for each frequency across the line the span of frequencies along it where
-// some kernel is not zero (the pupil's disc: a fifth of the square is zero). The loops over
-// them then run over plain arrays of doubles, which the compiler vectorises.
 // The image on an m x m grid (AerialImage::grid's layout, period `period` nm) blurred in place by
 // a Gaussian of standard deviation `sigma` nm in both directions (a resist's diffusion), by
 // its exact transform on the grid's frequencies. sigma = 0 changes nothing.
 void blur_grid(std::vector<double>& values, int m, double period, double sigma);
 
+// The kernels laid out for line profiles, made once a model: for a line along x and one along
+// y, each kernel's values with, for each frequency along the line, the frequencies across it
+// contiguous, real and imaginary parts apart, and for each frequency along the line the span
+// across it where some kernel is not zero (the pupil's disc: a fifth of the square is zero).
+// The loops over them then run over plain arrays of doubles.
 class LineKernels {
  public:
   explicit LineKernels(const Kernels& kernels);
@@ -81,6 +75,12 @@ struct Probe {
   double px, py, dx, dy;
 };
 
+// The image along the line p + t d (d a unit vector), cheap to evaluate many times. Along an
+// axis (the measurement lines of a rectilinear layout) each kernel's field on the line is a 1-D
+// sum over 2h + 1 frequencies, and the image, the weighted sum of their squared moduli, a real
+// trigonometric polynomial of degree 2h in t whose coefficients are formed once: a point then
+// costs 2h complex products whatever the number of kernels. Along another direction each point
+// costs the full 2-D sum of the image.
 class LineProfile {
  public:
   LineProfile(const AerialImage& image, double px, double py, double dx, double dy);
