@@ -90,7 +90,8 @@ struct Topology {
 // site's bisector comes with its line's equation (exact in integers), which gives the other
 // coordinate from the side alone, equally independent of p and q: one of another slope (with
 // 45-degree sites: 1/3, 3), and a diagonal one whose p is rounded from a rational (a ray from a
-// bend of a point's U with a steep edge).
+// bend of a point's U with a steep edge, or the diagonal through a slanted segment's own end
+// from a vertex of the diagram).
 bool clip_segment(Vec2& p, Vec2& q, const Box& b, const sweep::Line* eq = nullptr) {
   double t0 = 0, t1 = 1;
   int s0 = -1, s1 = -1;  // the sides that cut: 0 x = x1, 1 x = x2, 2 y = y1, 3 y = y2
@@ -398,11 +399,26 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
     const Site &s = S[e.ga], &t = S[e.gb];
     const sweep::Chain c(s, t);
     if (c.straight) {
-      if (e.v0 < 0 || e.v1 < 0)
-        throw std::logic_error("sweep builder: an unbounded straight edge between sites " + std::to_string(u) +
+      if (e.v0 < 0 && e.v1 < 0)
+        throw std::logic_error("sweep builder: a straight edge without a vertex between sites " + std::to_string(u) +
                                " and " + std::to_string(w));
-      const sweep::Line l = sweep::Chain::between_lines(s, t, topo.vertices[e.v0], topo.vertices[e.v1]);
-      return emit(topo.vertices[e.v0], topo.vertices[e.v1], u, w, &l);
+      if (e.v0 >= 0 && e.v1 >= 0) {
+        const sweep::Line l = sweep::Chain::between_lines(s, t, topo.vertices[e.v0], topo.vertices[e.v1]);
+        return emit(topo.vertices[e.v0], topo.vertices[e.v1], u, w, &l);
+      }
+      // Unbounded: where both segments' strips of interior nearest points (bounded by the
+      // diagonals through their ends) overlap without end, the edge runs along the overlap to
+      // infinity, from its vertex with the vertex's half-edge's site on its left.
+      const bool from_u = e.v0 >= 0;
+      const Vec2 v = topo.vertices[from_u ? e.v0 : e.v1];
+      const sweep::Line l = sweep::Chain::between_lines(s, t, v, v);
+      Vec2 d{-double(l.b), double(l.a)};
+      const double big = std::max(std::fabs(d.x), std::fabs(d.y));
+      d = {d.x / big, d.y / big};
+      const Site& left = from_u ? s : t;
+      const double mx = 0.5 * (double(left.a.x) + double(left.b.x)) - v.x, my = 0.5 * (double(left.a.y) + double(left.b.y)) - v.y;
+      if (d.x * my - d.y * mx < 0) d = {-d.x, -d.y};
+      return emit(v, Vec2{v.x + reach * d.x, v.y + reach * d.y}, u, w, &l);
     }
     using At = std::pair<int, double>;
     const At far_in{-1, -reach}, far_out{c.n - 1, reach};

@@ -617,6 +617,23 @@ TEST(Sweep, SteepEdgeTiedWithAPointAtItsEndsXAsTheSubdivision) {
   EXPECT_EQ(difference_of_polygons(p), "");
 }
 
+TEST(Sweep, UnboundedEdgeOfTwoCrossingSlantedEdgesAsTheSubdivision) {
+  // A fuzzer finding (corpus: finding-sweep-unbounded-edge-of-crossing-slanted-edges): the
+  // edges (0, 0)-(36864, 37008) and (256, 257)-(30208, 13319) lie on crossing lines, and the
+  // strips where each one's interior is the nearest part (bounded by the diagonals through its
+  // ends) overlap without end: their edge runs from a vertex to infinity. The builder took such
+  // an edge to have two vertices and stopped with a logic error.
+  const std::vector<Polygon> p{
+      {{{0, 0}, {36864, 37008}, {37008, 37008}, {37008, 37008}}, {}},
+      {{{37008, 37008}, {74017, 37008}, {74017, 74017}, {37008, 74017}}, {}},
+      {{{37008, 37008}, {72225, 37008}, {72225, 78739}, {37008, 78739}}, {}},
+      {{{256, 257}, {30208, 13319}, {60672, 13320}}, {}},
+      {{{39168, 3079}, {78337, 3079}, {78337, 8207}, {39168, 8207}}, {}},
+      {{{35072, 59626}, {35076, 59626}, {35076, 70379}, {35072, 70379}}, {}},
+      {{{0, 1700}, {1, 1700}, {1, 1701}, {0, 1701}}, {}}};
+  EXPECT_EQ(difference_of_polygons(p), "");
+}
+
 TEST(Sweep, VertexOfNearlyParallelEdgesWithinTheSubdivisionsAllowance) {
   // A fuzzer finding: the edges y = 1 and (2753, 1)-(178118, 10), of slope 5e-5, have distance
   // functions that part by 5e-5 per DBU, so the subdivision, deciding within 4e-7 of the
@@ -798,6 +815,42 @@ TEST(Sweep, TilesGiveTheWholeLayersSweepBitForBit) {
   for (int i = 0; i < 600; ++i) row.push_back(linf::testing::box(40 * i, (i % 3) * 7, 40 * i + 24 + i % 5, 30 + (i % 2) * 9));
   run(sites_of_polygons(merge_polygons(row)), "a row of wires");
   EXPECT_GT(tiled, cases * 4) << "most runs had several tiles";
+}
+
+// A fuzzer finding (corpus: finding-sweep-tile-cut-at-a-segments-own-end): near 1.2e8 a steep
+// edge's own end owns the cone beyond it, bounded by the diagonal through that end; a tile's
+// side cut that diagonal's piece, whose other end is a vertex rounded from a rational, and the
+// cut taken from that vertex was off in its last bits, so the two halves did not join. The
+// diagonal's cut now comes from its equation through the integer end.
+TEST(Sweep, TileCutOfTheDiagonalThroughASegmentsOwnEnd) {
+  auto ring = [](std::initializer_list<std::pair<Coord, Coord>> pts) {
+    Polygon p;
+    for (const auto& [x, y] : pts) p.outer.push_back({x, y});
+    return p;
+  };
+  const Coord X = 119291932;
+  const std::vector<Polygon> polygons{
+      ring({{X + 567, 567}, {X + 1143, 567}, {X + 1143, 612}, {X + 567, 612}}),
+      ring({{X + 567, 567}, {X + 1143, 567}, {X + 1143, 1143}, {X + 567, 1143}}),
+      ring({{X + 567, 567}, {X + 567, 567}, {X + 567, 567}, {X + 567, 567}, {X + 504, 567}, {X + 567, 0}, {X, 0}, {X + 9, 567}}),
+      ring({{X + 567, 567}, {X + 567, 567}, {X + 567, 567}, {X + 567, 567}, {X + 567, 9}, {X, 0}, {X + 144, 0}, {X, 0}}),
+      ring({{X, 567}, {X + 576, 567}, {X + 576, 1143}, {X, 1143}}),
+      ring({{X + 567, 567}, {X + 252, 252}, {X + 252, 0}, {X + 567, 567}, {X + 567, 567}, {X + 63, 0}}),
+      ring({{X, 567}, {X + 567, 54}, {X + 189, 189}}),
+      ring({{X + 180, 567}, {X + 189, 567}, {X + 189, 576}, {X + 180, 576}})};
+  DiagramOptions o;
+  o.sweep = true, o.check = false, o.build.threads = 1, o.build.tile_size = 381;
+  const Result tiled = voronoi_of_polygons(polygons, o);
+  o.build.tile_size = 0;
+  const Result whole = voronoi_of_polygons(polygons, o);
+  ASSERT_TRUE(tiled.diagram.swept);
+  ASSERT_EQ(tiled.diagram.pieces.size(), whole.diagram.pieces.size());
+  for (std::size_t i = 0; i < whole.diagram.pieces.size(); ++i) {
+    const Piece &a = tiled.diagram.pieces[i], &b = whole.diagram.pieces[i];
+    ASSERT_TRUE(a.a == b.a && a.b == b.b && a.p.x == b.p.x && a.p.y == b.p.y && a.q.x == b.q.x && a.q.y == b.q.y)
+        << "piece " << i << ": tiled " << a.a << "-" << a.b << " (" << a.p.x << ", " << a.p.y << ")-(" << a.q.x << ", "
+        << a.q.y << "), whole " << b.a << "-" << b.b;
+  }
 }
 
 TEST(Sweep, TilesReportAFailingSinkWithoutHanging) {

@@ -174,7 +174,8 @@ struct Chain {
   Vec2 v[3];
   Line parts[2];  // the lines of v[0]-v[1] and v[1]-v[2]
   Line rays[2];   // the in-ray's and the out-ray's (diagonal, but from bends rounded from rationals)
-  Line whole;     // the middle line of two parallel slanted lines (n = 1)
+  Line whole;     // n = 1: the middle line of two parallel slanted lines, or the diagonal through
+                  // a slanted segment's own end (from that integer end, not from the vertices)
   bool has_whole = false;
   int n = 0;
   Vec2 in{0, 0}, out{0, 0};  // steps of the rays, the larger entry +-1
@@ -205,6 +206,7 @@ struct Chain {
       n = 1;
       v[0] = {double(end.x), double(end.y)};
       in = out = {double(d[0]), double(d[1])};
+      whole = through(end, d), has_whole = true;
       point = &s;
       left_is_point = double(mid_s.x - end.x) * double(-d[1]) + double(mid_s.y - end.y) * double(d[0]) > 0;
       return;
@@ -229,6 +231,12 @@ struct Chain {
   static std::array<std::int64_t, 2> sgn(const std::array<std::int64_t, 2>& m) {
     return {m[0] > 0 ? 1 : -1, m[1] > 0 ? 1 : -1};
   }
+  // The diagonal through the integer point e along d (entries +-1): d_y x - d_x y = d_y e_x - d_x e_y.
+  // A piece of it cut at a tile's side from a vertex rounded from a rational (the piece's other
+  // end) would carry that vertex's rounding; from this line the cut has the same bits in every tile.
+  static Line through(const Point& e, const std::array<std::int64_t, 2>& d) {
+    return {d[1], -d[0], __int128(d[1]) * e.x - __int128(d[0]) * e.y};
+  }
   static __int128 form(const std::array<std::int64_t, 2>& m, const Point& p) {
     return __int128(m[0]) * p.x + __int128(m[1]) * p.y;
   }
@@ -242,6 +250,7 @@ struct Chain {
       n = 1;
       v[0] = {double(p.a.x), double(p.a.y)};
       in = out = {double(d[0]), double(d[1])};
+      whole = through(p.a, d), has_whole = true;
       const Point other = seg.a == p.a ? seg.b : seg.a;
       // The segment on the left of d where (other - P) . (-d_y, d_x) > 0; P counts as the
       // other side.
@@ -278,7 +287,7 @@ struct Chain {
   }
 
   // The line of part k (-1 the in-ray, 0 .. n - 2 the inner parts, n - 1 the out-ray; a single
-  // line's own), or none (a single line through a point: exact anyway).
+  // line's own).
   const Line* line_of(int k) const {
     if (n == 1) return has_whole ? &whole : nullptr;
     if (k < 0) return &rays[0];
