@@ -415,9 +415,12 @@ std::vector<Piece> sweep_run(const SiteList& S, const Box& clip, const Box* hole
       Vec2 d{-double(l.b), double(l.a)};
       const double big = std::max(std::fabs(d.x), std::fabs(d.y));
       d = {d.x / big, d.y / big};
+      // The site lies on one side of the line (touching it at most at the lines' crossing): its
+      // end farther from the line tells which.
       const Site& left = from_u ? s : t;
-      const double mx = 0.5 * (double(left.a.x) + double(left.b.x)) - v.x, my = 0.5 * (double(left.a.y) + double(left.b.y)) - v.y;
-      if (d.x * my - d.y * mx < 0) d = {-d.x, -d.y};
+      auto side = [&](const Point& e) { return d.x * (double(e.y) - v.y) - d.y * (double(e.x) - v.x); };
+      const double sa = side(left.a), sb = side(left.b);
+      if ((std::fabs(sa) > std::fabs(sb) ? sa : sb) < 0) d = {-d.x, -d.y};
       return emit(v, Vec2{v.x + reach * d.x, v.y + reach * d.y}, u, w, &l);
     }
     using At = std::pair<int, double>;
