@@ -46,6 +46,23 @@ struct Gauges {
   }
 };
 
+// Line ends of 120 nm wires facing across a gap closed 10 nm at a time (200 down to 10 nm), one
+// row a gap, each with an external gauge along the wires across its gap.
+struct LineEndGaps {
+  std::vector<Polygon> layer;
+  Gauges g;
+  std::vector<int> gaps;
+  LineEndGaps() {
+    for (int gap = 200, k = 0; gap >= 10; gap -= 10, ++k) {
+      const Coord y = 3000 * k, a = 1000 - gap / 2;
+      layer.push_back(box(300, y, a, y + 120));
+      layer.push_back(box(a + gap, y, 1700, y + 120));
+      g.add(a + gap / 2.0, y + 60, true, gap, kExternal);
+      gaps.push_back(gap);
+    }
+  }
+};
+
 Printability run(const std::vector<Polygon>& layer, const Gauges& g, bool with_context = false, int threads = 0,
                  double threshold = T) {
   const PolygonArrays flat = flat_of(layer);
@@ -132,16 +149,10 @@ TEST(Printability, NarrowedLinePinches) {
 // Line ends of 120 nm wires facing across a gap closed 10 nm at a time: the external gauge
 // along the wires is measured, then `bridge`.
 TEST(Printability, ClosedGapBridges) {
-  std::vector<Polygon> layer;
-  Gauges g;
-  std::vector<int> gaps;
-  for (int gap = 200, k = 0; gap >= 10; gap -= 10, ++k) {
-    const Coord y = 3000 * k, a = 1000 - gap / 2;
-    layer.push_back(box(300, y, a, y + 120));
-    layer.push_back(box(a + gap, y, 1700, y + 120));
-    g.add(a + gap / 2.0, y + 60, true, gap, kExternal);
-    gaps.push_back(gap);
-  }
+  const LineEndGaps ends;
+  const std::vector<Polygon>& layer = ends.layer;
+  const Gauges& g = ends.g;
+  const std::vector<int>& gaps = ends.gaps;
   const Printability p = run(layer, g);
   bool bridged = false;
   for (std::size_t i = 0; i < gaps.size(); ++i) {
@@ -247,19 +258,13 @@ TEST(Printability, ProcessWindowCorners) {
 }
 
 // The resist's blur closes narrow gaps sooner: on the line-end gaps above, every gap that
-// bridges bare bridges blurred, and the blurred model bridges a wider one; a narrow line's
-// printed width shrinks. A negative blur is refused.
+// bridges bare bridges blurred, and the blurred model bridges a wider one. A negative blur is
+// refused.
 TEST(Printability, BlurBridgesWiderGaps) {
-  std::vector<Polygon> layer;
-  Gauges g;
-  std::vector<int> gaps;
-  for (int gap = 200, k = 0; gap >= 10; gap -= 10, ++k) {
-    const Coord y = 3000 * k, a = 1000 - gap / 2;
-    layer.push_back(box(300, y, a, y + 120));
-    layer.push_back(box(a + gap, y, 1700, y + 120));
-    g.add(a + gap / 2.0, y + 60, true, gap, kExternal);
-    gaps.push_back(gap);
-  }
+  const LineEndGaps ends;
+  const std::vector<Polygon>& layer = ends.layer;
+  const Gauges& g = ends.g;
+  const std::vector<int>& gaps = ends.gaps;
   const PolygonArrays flat = flat_of(layer);
   const Printability bare = printability(flat.view(), 1.0, g.columns(false), PrintModel{&focus(), T}, 0);
   const Printability blurred =
