@@ -7,6 +7,7 @@
 //   build/bench_sweep memory WIRES TILE THREADS             one build, for /usr/bin/time -v
 //   build/bench_sweep curved runs                          disks, a ring and round pads (slanted edges)
 //   build/bench_sweep check runs NAME FILE|wires:N ...     the checker, sampled and full, against the build
+//   build/bench_sweep wires runs N ...                     generated wires of N rectangles, no subdivision
 //
 // Prints one markdown row an input: the best of `runs` timings of each (alternating), the
 // ratios sweep / Boost and subdivision / sweep, and whether the two L-inf builders gave the
@@ -273,6 +274,14 @@ int main(int argc, char** argv) {
                                                               : read_polygons(file.c_str()))),
                 runs);
     }
+    return 0;
+  }
+  if (argc > 1 && std::string(argv[1]) == "wires") {  // bench_sweep wires RUNS N [N ...]: Boost and the sweep only
+    const int runs = argc > 2 ? std::atoi(argv[2]) : 3;
+    std::printf("| input | points / segments | Boost.Polygon L2, 1 thread | sweep, 1 thread | subdivision, 1 thread | "
+                "sweep / Boost | subdivision / sweep | same pieces |\n|---|---|---|---|---|---|---|---|\n");
+    for (int i = 3; i < argc; ++i)
+      row("generated wires", sites_of_polygons(merge_polygons(wires(std::strtoull(argv[i], nullptr, 10), 4))), runs, false);
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "curved") {  // bench_sweep curved RUNS

@@ -71,7 +71,7 @@ struct Topology {
   template <typename Site, typename Circle>
   std::pair<void*, void*> _insert_new_edge(const Site& s1, const Site& s3, const Circle& c, void* e12, void* e23) {
     const std::int32_t v = std::int32_t(vertices.size());
-    vertices.push_back({c.x().limit(), c.y().limit()});
+    vertices.push_back({c.x_limit(), c.y_limit()});
     static_cast<Half*>(e12)->vertex0 = v;
     static_cast<Half*>(e23)->vertex0 = v;
     sweep::sweep_at() = {false, 0};

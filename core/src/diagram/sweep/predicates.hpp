@@ -20,6 +20,7 @@
 #include <stdexcept>
 
 #include "diagram/sweep/ball.hpp"
+#include "diagram/sweep/circle.hpp"
 #include "diagram/sweep/eps.hpp"
 
 namespace linf::sweep {
@@ -105,11 +106,21 @@ struct Predicates {
       if (l.y0() != r.y0()) return l.y0() < r.y0();
       return orientation(l.x1(), l.y1(), l.x0(), l.y0(), r.x1(), r.y1()) > 0;
     }
-    bool operator()(const Site& l, const Circle& r) const { return compare(Ratio(I(l.x0())), r.lower_x()) < 0; }
-    bool operator()(const Circle& l, const Site& r) const { return compare(l.lower_x(), Ratio(I(r.x0()))) < 0; }
+    // Circle events by their keys (circle.hpp), exactly where the keys are too close to tell.
+    bool operator()(const Site& l, const Circle& r) const {
+      const int f = filtered_limits(double(l.x0()), r.lower_x_key());
+      return (f != 0 ? f : compare(Ratio(I(l.x0())), r.lower_x())) < 0;
+    }
+    bool operator()(const Circle& l, const Site& r) const {
+      const int f = filtered_limits(l.lower_x_key(), double(r.x0()));
+      return (f != 0 ? f : compare(l.lower_x(), Ratio(I(r.x0())))) < 0;
+    }
     bool operator()(const Circle& l, const Circle& r) const {
-      const int c = compare(l.lower_x(), r.lower_x());
-      return c != 0 ? c < 0 : compare(l.y(), r.y()) < 0;
+      int c = filtered_limits(l.lower_x_key(), r.lower_x_key());
+      if (c == 0) c = compare(l.lower_x(), r.lower_x());
+      if (c != 0) return c < 0;
+      c = filtered_limits(l.y_key(), r.y_key());
+      return (c != 0 ? c : compare(l.y(), r.y())) < 0;
     }
   };
 
@@ -347,8 +358,7 @@ struct Predicates {
       }
       BallT<I> b;
       if (segments == 0 ? !ball_through<I>(x, y, b) : !ball_touching<I>(x, y, fixed, nrm, spans, b)) return false;
-      const Eps one_eps = Eps::of(I(1), I(1));
-      c = Circle(Ratio(b.cx, b.den), Ratio(b.cy, b.den), Ratio(b.cx * one_eps + b.r, b.den * one_eps));
+      c = Circle(b.cx, b.cy, b.r, b.den);
       // Boost's last test: a vertical segment's arc ends at its endpoints' heights.
       for (const Site* t : s) {
         if (!t->is_segment() || t->x0() != t->x1()) continue;

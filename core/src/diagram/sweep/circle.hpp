@@ -1,0 +1,91 @@
+// The sweep's circle events: Boost's circle_event for our Ratio coordinates, specialised.
+//
+// Boost's generic event holds three coordinates (centre x, centre y, lower x). Ours are ratios
+// of eps-polynomials, 64 bytes each in the int64 tier: a 200-byte event, copied into the event
+// list and compared by exact 128-bit products every time the queue's heap moves. This one
+// keeps what the sweep decides with exactly (lower x and centre y: numerators and the shared
+// denominator) and the limits as doubles: the vertex's place (the centre, output only) and
+// the keys of the queue's order. The doubles decide a comparison unless two keys lie within
+// rounding of each other; then the exact ratios do. Same order, same events, same bits.
+#pragma once
+#include <boost/polygon/detail/voronoi_structures.hpp>
+#include <cmath>
+#include <limits>
+
+#include "diagram/sweep/eps.hpp"
+
+namespace linf::sweep {
+
+// The sign of a - b where a and b are limits of two ratios, each within 3 roundings of the
+// exact value (RatioT::limit: one rounding in the wide tiers, at most three in int64's); 0 if
+// that cannot tell, also for a NaN or an infinity.
+inline int filtered_limits(double a, double b) {
+  const double tol = (std::fabs(a) + std::fabs(b)) * 0x1p-50;
+  if (a - b > tol) return 1;
+  if (b - a > tol) return -1;
+  return 0;
+}
+
+// The limit of n / d at 0+, or NaN where that is no finite number (n of a lower order than d:
+// the predicates never make one, and then the exact comparison decides).
+template <typename I>
+double safe_limit(const RatioT<I>& r) {
+  int k = 0;
+  while (k < kTerms - 1 && r.den.c[k] == 0) ++k;
+  for (int j = 0; j < k; ++j)
+    if (r.num.c[j] != 0) return std::numeric_limits<double>::quiet_NaN();
+  if (r.den.c[k] == 0) return std::numeric_limits<double>::quiet_NaN();
+  return r.limit();
+}
+
+}  // namespace linf::sweep
+
+namespace boost::polygon::detail {
+
+template <typename I>
+class circle_event<linf::sweep::RatioT<I>> {
+ public:
+  using coordinate_type = linf::sweep::RatioT<I>;
+  using Eps = linf::sweep::EpsT<I>;
+
+  circle_event() = default;
+  // The ball of centre (cx, cy) / den and radius r / den; its event is where the sweep touches
+  // its rightmost point, at x = (cx (1 + eps) + r) / (den (1 + eps)).
+  circle_event(const Eps& cx, const Eps& cy, const Eps& r, const Eps& den) {
+    const Eps one_eps = Eps::of(I(1), I(1));
+    const coordinate_type lower(cx * one_eps + r, den * one_eps), y(cy, den);
+    lower_num_ = lower.num, lower_den_ = lower.den, y_num_ = y.num;
+    x_ = coordinate_type(cx, den).limit();
+    lower_key_ = linf::sweep::safe_limit(lower);
+    y_key_ = linf::sweep::safe_limit(y);
+  }
+
+  coordinate_type lower_x() const { return {lower_num_, lower_den_}; }
+  // The centre's y over den: den (1 + eps) is lower x's denominator (den has at most
+  // kTerms - 1 orders that count, so its product with 1 + eps lost nothing of them), and its
+  // sign is den's, so both were normalised alike.
+  coordinate_type y() const {
+    coordinate_type r;
+    r.num = y_num_;
+    r.den.c[0] = lower_den_.c[0];
+    for (int k = 1; k < linf::sweep::kTerms; ++k) r.den.c[k] = lower_den_.c[k] - r.den.c[k - 1];
+    return r;
+  }
+  double x_limit() const { return x_; }
+  double y_limit() const { return y_key_ == y_key_ ? y_key_ : y().limit(); }
+  double lower_x_key() const { return lower_key_; }
+  double y_key() const { return y_key_; }
+
+  bool is_active() const { return is_active_; }
+  circle_event& deactivate() {
+    is_active_ = false;
+    return *this;
+  }
+
+ private:
+  Eps lower_num_, lower_den_, y_num_;
+  double x_ = 0, lower_key_ = 0, y_key_ = 0;
+  bool is_active_ = true;
+};
+
+}  // namespace boost::polygon::detail
