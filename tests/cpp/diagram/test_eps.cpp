@@ -92,6 +92,9 @@ TEST(SweepNumbers, CircleEventKeysOrderAsTheExactRatios) {
       const RatioT<L> lower(cx[i] * one_eps + r[i], den[i] * one_eps), y(cy[i], den[i]);
       unequal += c[i].lower_x().num.c != lower.num.c || c[i].lower_x().den.c != lower.den.c;
       unequal += c[i].y().num.c != y.num.c || c[i].y().den.c != y.den.c;
+      const double x = RatioT<L>(cx[i], den[i]).limit(), yl = y.limit();  // the vertex, bit for bit
+      unequal += !(c[i].x_limit() == x || (x != x && c[i].x_limit() != c[i].x_limit()));
+      unequal += !(c[i].y_limit() == yl || (yl != yl && c[i].y_limit() != c[i].y_limit()));
     }
     const int fx = filtered_limits(c[0].lower_x_key(), c[1].lower_x_key());
     const int fy = filtered_limits(c[0].y_key(), c[1].y_key());

@@ -4,9 +4,10 @@
 // of eps-polynomials, 64 bytes each in the int64 tier: a 200-byte event, copied into the event
 // list and compared by exact 128-bit products every time the queue's heap moves. This one
 // keeps what the sweep decides with exactly (lower x and centre y: numerators and the shared
-// denominator) and the limits as doubles: the vertex's place (the centre, output only) and
-// the keys of the queue's order. The doubles decide a comparison unless two keys lie within
-// rounding of each other; then the exact ratios do. Same order, same events, same bits.
+// denominator), of the centre's x only what its limit needs (the vertex's place, output
+// only), and double keys of lower x and y for the queue's order. The keys decide a comparison
+// unless two lie within rounding of each other; then the exact ratios do. Same order, same
+// events, same bits.
 #pragma once
 #include <boost/polygon/detail/voronoi_structures.hpp>
 #include <cmath>
@@ -16,26 +17,29 @@
 
 namespace linf::sweep {
 
-// The sign of a - b where a and b are limits of two ratios, each within 3 roundings of the
-// exact value (RatioT::limit: one rounding in the wide tiers, at most three in int64's); 0 if
-// that cannot tell, also for a NaN or an infinity.
+// The sign of a - b where a and b are keys (key_of): each within a few units in the last place
+// of the exact limit it stands for (two conversions and a quotient; a wide conversion may
+// truncate); 0 if that cannot tell, also for a NaN or an infinity. The margin, 2^-48 of their
+// size, is several times what those roundings can take together.
 inline int filtered_limits(double a, double b) {
-  const double tol = (std::fabs(a) + std::fabs(b)) * 0x1p-50;
+  const double tol = (std::fabs(a) + std::fabs(b)) * 0x1p-48;
   if (a - b > tol) return 1;
   if (b - a > tol) return -1;
   return 0;
 }
 
-// The limit of n / d at 0+, or NaN where that is no finite number (n of a lower order than d:
-// the predicates never make one, and then the exact comparison decides).
+// The limit of n / d at 0+ as the quotient of the two coefficients' doubles (no wide division:
+// a key is made for every event, most of which are never processed), or NaN where the limit
+// is no finite number (n of a lower order than d: the predicates never make one, and then the
+// exact comparison decides).
 template <typename I>
-double safe_limit(const RatioT<I>& r) {
+double key_of(const RatioT<I>& r) {
   int k = 0;
   while (k < kTerms - 1 && r.den.c[k] == 0) ++k;
   for (int j = 0; j < k; ++j)
     if (r.num.c[j] != 0) return std::numeric_limits<double>::quiet_NaN();
   if (r.den.c[k] == 0) return std::numeric_limits<double>::quiet_NaN();
-  return r.limit();
+  return to_double(r.num.c[k]) / to_double(r.den.c[k]);
 }
 
 }  // namespace linf::sweep
@@ -55,14 +59,14 @@ class circle_event<linf::sweep::RatioT<I>> {
     const Eps one_eps = Eps::of(I(1), I(1));
     const coordinate_type lower(cx * one_eps + r, den * one_eps), y(cy, den);
     lower_num_ = lower.num, lower_den_ = lower.den, y_num_ = y.num;
-    x_ = coordinate_type(cx, den).limit();
-    lower_key_ = linf::sweep::safe_limit(lower);
-    y_key_ = linf::sweep::safe_limit(y);
+    x_num_ = coordinate_type(cx, den).num.c[lowest(y.den)];
+    lower_key_ = linf::sweep::key_of(lower);
+    y_key_ = linf::sweep::key_of(y);
   }
 
   coordinate_type lower_x() const { return {lower_num_, lower_den_}; }
-  // The centre's y over den: den (1 + eps) is lower x's denominator (den has at most
-  // kTerms - 1 orders that count, so its product with 1 + eps lost nothing of them), and its
+  // The centre's y over den: den (1 + eps) is lower x's denominator (its orders up to
+  // kTerms - 1 are den's plus the order below, so den comes back from them exactly), and its
   // sign is den's, so both were normalised alike.
   coordinate_type y() const {
     coordinate_type r;
@@ -71,8 +75,12 @@ class circle_event<linf::sweep::RatioT<I>> {
     for (int k = 1; k < linf::sweep::kTerms; ++k) r.den.c[k] = lower_den_.c[k] - r.den.c[k - 1];
     return r;
   }
-  double x_limit() const { return x_; }
-  double y_limit() const { return y_key_ == y_key_ ? y_key_ : y().limit(); }
+  // The vertex, as RatioT::limit rounds it (once, in the wide tiers): only for events processed.
+  double x_limit() const {
+    const coordinate_type y_ratio = y();
+    return coordinate_type::ratio_to_double(x_num_, y_ratio.den.c[lowest(y_ratio.den)]);
+  }
+  double y_limit() const { return y().limit(); }
   double lower_x_key() const { return lower_key_; }
   double y_key() const { return y_key_; }
 
@@ -83,8 +91,15 @@ class circle_event<linf::sweep::RatioT<I>> {
   }
 
  private:
+  // The order RatioT::limit reads a ratio at: den's lowest nonzero one (the last if none).
+  static int lowest(const Eps& den) {
+    int k = 0;
+    while (k < linf::sweep::kTerms - 1 && den.c[k] == 0) ++k;
+    return k;
+  }
   Eps lower_num_, lower_den_, y_num_;
-  double x_ = 0, lower_key_ = 0, y_key_ = 0;
+  I x_num_{};  // the centre's x numerator at den's lowest order: all its limit needs
+  double lower_key_ = 0, y_key_ = 0;
   bool is_active_ = true;
 };
 
