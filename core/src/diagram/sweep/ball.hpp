@@ -467,9 +467,12 @@ bool turns_left(const std::int64_t x[3], const std::int64_t y[3], const int side
 template <typename I>
 bool middle_may_vanish(const int side[3], const Normal* nrm) {
   // Every gradient is linear in eps and every quantity below a sum of products of two of them:
-  // polynomials of degree 2, in T: int64 where every slanted normal is (+-1, +-1) (the int64
-  // tier), else the wide type of the tier.
-  using T = std::conditional_t<std::is_same_v<I, std::int64_t>, std::int64_t, typename WideOf<I>::type>;
+  // polynomials of degree 2, in the tier's own type. Bounds: a slanted normal's entries within
+  // 2^24 in the 128-bit tier (sweep.cpp) make gradients and d within 2^25, the turned
+  // differences within 2^51 and the sums of products within 2^104; within 2^31 in the 256-bit
+  // tier, 2^132; (+-1, +-1) in the int64 tier, a few units. The wide type cost a fifth of a
+  // layer of round pads in its products.
+  using T = I;
   struct Lin {  // c0 + c1 eps
     T c0, c1;
   };
