@@ -536,18 +536,25 @@ template <typename I>
 bool behind_the_sweep(const BallT<I>& b) {
   const SweepAt& a = sweep_at();
   if (a.site && a.x == INT64_MIN) return false;
-  const EpsT<I> one_eps = EpsT<I>::of(I(1), I(1));
   if (a.site) {  // the sign of (cx - x den)(1 + eps) + r, den > 0, in the wide type (x den
                  // outgrows I): its constant term, or where that is 0 the whole polynomial
     using W = typename WideOf<I>::type;
+    if constexpr (!std::is_same_v<I, std::int64_t>) {  // the constant term in long doubles first
+      const long double cx = static_cast<long double>(b.cx.c[0]), r = static_cast<long double>(b.r.c[0]);
+      const long double xd = static_cast<long double>(a.x) * static_cast<long double>(b.den.c[0]);
+      const long double v = cx - xd + r, tol = (std::fabs(cx) + std::fabs(xd) + std::fabs(r)) * 0x1p-58L;
+      if (v > tol) return false;
+      if (v < -tol) return true;
+    }
+    const W c0 = W(b.cx.c[0]) - W(a.x) * W(b.den.c[0]) + W(b.r.c[0]);
+    if (c0 != 0) return c0 < 0;
     EpsT<W> p;
     for (int k = 0; k < kTerms; ++k) p.c[k] = W(b.cx.c[k]) - W(a.x) * W(b.den.c[k]);
-    if (p.c[0] + W(b.r.c[0]) != 0) return p.c[0] + W(b.r.c[0]) < 0;
-    p = p * EpsT<W>::of(W(1), W(1));  // cx and den are quadratic, r cubic: within kTerms
+    p = times_one_plus_eps(p);  // cx and den are quadratic, r cubic: within kTerms
     for (int k = 0; k < kTerms; ++k) p.c[k] += W(b.r.c[k]);
     return p.sign() < 0;
   }
-  return compare(RatioT<I>(b.cx * one_eps + b.r, b.den * one_eps), sweep_at_circle<I>()) < 0;
+  return compare(RatioT<I>(times_one_plus_eps(b.cx) + b.r, times_one_plus_eps(b.den)), sweep_at_circle<I>()) < 0;
 }
 
 // Whether middle_may_vanish is asked of a ball with a segment among its sites: where its radius

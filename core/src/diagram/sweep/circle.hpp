@@ -56,8 +56,8 @@ class circle_event<linf::sweep::RatioT<I>> {
   // The ball of centre (cx, cy) / den and radius r / den; its event is where the sweep touches
   // its rightmost point, at x = (cx (1 + eps) + r) / (den (1 + eps)).
   circle_event(const Eps& cx, const Eps& cy, const Eps& r, const Eps& den) {
-    const Eps one_eps = Eps::of(I(1), I(1));
-    const coordinate_type lower(cx * one_eps + r, den * one_eps), y(cy, den);
+    using linf::sweep::times_one_plus_eps;
+    const coordinate_type lower(times_one_plus_eps(cx) + r, times_one_plus_eps(den)), y(cy, den);
     lower_num_ = lower.num, lower_den_ = lower.den, y_num_ = y.num;
     x_num_ = coordinate_type(cx, den).num.c[lowest(y.den)];
     lower_key_ = linf::sweep::key_of(lower);
