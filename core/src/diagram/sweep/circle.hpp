@@ -34,8 +34,7 @@ inline int filtered_limits(double a, double b) {
 // exact comparison decides).
 template <typename I>
 double key_of(const RatioT<I>& r) {
-  int k = 0;
-  while (k < kTerms - 1 && r.den.c[k] == 0) ++k;
+  const int k = r.order();
   for (int j = 0; j < k; ++j)
     if (r.num.c[j] != 0) return std::numeric_limits<double>::quiet_NaN();
   if (r.den.c[k] == 0) return std::numeric_limits<double>::quiet_NaN();
@@ -59,7 +58,7 @@ class circle_event<linf::sweep::RatioT<I>> {
     using linf::sweep::times_one_plus_eps;
     const coordinate_type lower(times_one_plus_eps(cx) + r, times_one_plus_eps(den)), y(cy, den);
     lower_num_ = lower.num, lower_den_ = lower.den, y_num_ = y.num;
-    x_num_ = coordinate_type(cx, den).num.c[lowest(y.den)];
+    x_num_ = coordinate_type(cx, den).num.c[y.order()];
     lower_key_ = linf::sweep::key_of(lower);
     y_key_ = linf::sweep::key_of(y);
   }
@@ -78,7 +77,7 @@ class circle_event<linf::sweep::RatioT<I>> {
   // The vertex, as RatioT::limit rounds it (once, in the wide tiers): only for events processed.
   double x_limit() const {
     const coordinate_type y_ratio = y();
-    return coordinate_type::ratio_to_double(x_num_, y_ratio.den.c[lowest(y_ratio.den)]);
+    return coordinate_type::ratio_to_double(x_num_, y_ratio.den.c[y_ratio.order()]);
   }
   double y_limit() const { return y().limit(); }
   double lower_x_key() const { return lower_key_; }
@@ -91,14 +90,8 @@ class circle_event<linf::sweep::RatioT<I>> {
   }
 
  private:
-  // The order RatioT::limit reads a ratio at: den's lowest nonzero one (the last if none).
-  static int lowest(const Eps& den) {
-    int k = 0;
-    while (k < linf::sweep::kTerms - 1 && den.c[k] == 0) ++k;
-    return k;
-  }
   Eps lower_num_, lower_den_, y_num_;
-  I x_num_{};  // the centre's x numerator at den's lowest order: all its limit needs
+  I x_num_{};  // the centre's x numerator at the order its limit reads (RatioT::order): all it needs
   double lower_key_ = 0, y_key_ = 0;
   bool is_active_ = true;
 };

@@ -159,9 +159,14 @@ struct RatioT {
   // The limit at eps -> 0+: the ratio of the lowest coefficients of the same order, where the
   // denominator's lowest order is at most the numerator's (what the predicates produce).
   double limit() const {
+    const int k = order();
+    return ratio_to_double(num.c[k], den.c[k]);
+  }
+  // The order limit() reads: the denominator's lowest nonzero one (the last if none).
+  int order() const {
     int k = 0;
     while (k < kTerms - 1 && den.c[k] == 0) ++k;
-    return ratio_to_double(num.c[k], den.c[k]);
+    return k;
   }
   static double ratio_to_double(const I& n, const I& d) {
     if constexpr (std::is_same_v<I, std::int64_t>) return double(n) / double(d);  // within 2^53: one rounding
