@@ -4,6 +4,7 @@
 # 1,000 best gauges against the base rate, printed as a table.
 #   klayout -b -r bench/eval_litho.py [-rd input=FILE -rd hotspots=CSV -rd layer=L/D]
 #                                     [-rd presets=euv,iccad13] [-rd radius=NM] [-rd threads=N] [-rd near=linf|euclid]
+#                                     [-rd opc=1]
 # Default: ../shared/data/iccad16/testcase3.oas, 1000/0, test3.csv.
 # Positives: gauges whose point lies within 32 nm (L-inf, as the issue counted) of a hotspot point. Lower scores
 # rank first (worse). The models are the fixed presets; the threshold is calibrate_threshold on
@@ -17,7 +18,8 @@
 # "not resolved" and no figures. The models are the commands' (litho.model_of: the process window, dose
 # +-2% and the preset's defocus corner). Diagnostic rows per preset rank by other readings of the same
 # simulation (the printed cd in nm, the nominal ratio, the deviation either way, the pv band, the
-# failure flag), to tell the model's reading from the score's rule.
+# failure flag), to tell the model's reading from the score's rule. -rd opc=1: each preset again,
+# read after the emulated OPC (litho.opc_mask, as -rd opc=1 reads: contexts of the drawn layer).
 import csv
 import math
 import os
@@ -125,17 +127,23 @@ rows = [("geometric score", "", auc(list(table.scores()), positive), best_hits(l
          "", "")]
 
 flat = polys.flat()
-for preset in presets:
+variants = [(p, False) for p in presets] + ([(p, True) for p in presets] if g.get("opc") == "1" else [])
+for preset, after_opc in variants:
     t1 = time.perf_counter()
     model = litho.model_of({"litho": preset})  # the commands' own models, with their process windows
+    mask, S, opc_about = flat, 1, None
+    label = preset + (" after OPC" if after_opc else "")
     kernels = model.kernels
     P = kernels.period
     try:
         cal = _core.calibrate_threshold(kernels, width * dbu_nm, pitch * dbu_nm, model.blur_nm)
     except ValueError as e:  # the model cannot print the layer's own lines: no score to compare
         log("eval_litho: %s: %s" % (preset, e))
-        rows.append(("litho " + preset, "not resolved", None, None, "", ""))
+        rows.append(("litho " + label, "not resolved", None, None, "", ""))
         continue
+    if after_opc:
+        mask, S, opc_about = litho.opc_mask(polys, dbu_nm, model, cal["threshold"], width * dbu_nm, threads)
+        log("eval_litho: %s: OPC %s" % (preset, opc_about))
     # The gauges whose line fits in the window centred on the point (with a unit to spare for
     # the corner's rounding).
     half = P / dbu_nm / 2 - 1
@@ -143,7 +151,7 @@ for preset in presets:
                                 abs(reals[10 * i + 1] - cy[i]), abs(reals[10 * i + 3] - cy[i])) <= half)
                        for i in range(n)))
     idx = [i for i in range(n) if fits[i]]
-    col = lambda k: array("d", (reals[10 * i + k] for i in idx))  # noqa: E731
+    col = lambda k: array("d", (reals[10 * i + k] * S for i in idx))  # noqa: E731 (in the mask's units)
     types = array("i", (ints[13 * i + 12] for i in idx))
     radius = float(g.get("radius") if g.get("radius") is not None else P / 2) / dbu_nm
     pts = array("d")
@@ -151,7 +159,7 @@ for preset in presets:
         pts.append(cx[i])
         pts.append(cy[i])
     ids = array("Q", _core.gauge_contexts(flat, pts, radius, threads)) if radius > 0 else None  # radius=0: every gauge
-    r = core.gauge_printability(flat, dbu_nm, col(4), col(5), col(0), col(1), col(2), col(3), types, col(6),
+    r = core.gauge_printability(mask, dbu_nm / S, col(4), col(5), col(0), col(1), col(2), col(3), types, col(6),
                                 kernels, cal["threshold"], ids, threads, model.defocus, litho.DOSE, model.blur_nm)
     s = array("d", r["score"])
     fails = array("B", r["fails"])
@@ -161,13 +169,13 @@ for preset in presets:
         # As the commands rank (litho.rescore): a reading with no edge within reach ranks last.
         score[i] = s[k] if fails[k] or printed[k] == printed[k] else math.inf
     if g.get("dump"):  # -rd dump=PREFIX: the scores, one a line in rank order, to PREFIX_<preset>.txt
-        with open("%s_%s.txt" % (g["dump"], preset), "w") as f:
+        with open("%s_%s.txt" % (g["dump"], label.replace(" ", "_")), "w") as f:
             f.write("".join("%r\n" % v for v in score))
     log("eval_litho: %s: threshold %.4f (pitch %.1f nm, contrast %.3f), %d of %d gauges simulated in %d windows "
         "(%d shared), %d pinch, %d bridge, %.1f s"
         % (preset, cal["threshold"], cal["pitch"], cal["contrast"], len(idx), n, r["simulations"], r["shared"],
            fails.count(1), fails.count(2), time.perf_counter() - t1))
-    rows.append(("litho " + preset, "%.4f" % cal["threshold"], auc(score, positive), best_hits(score, positive, BEST),
+    rows.append(("litho " + label, "%.4f" % cal["threshold"], auc(score, positive), best_hits(score, positive, BEST),
                  "%d/%d" % (fails.count(1), fails.count(2)), "%d" % (n - len(idx))))
     # Diagnostics, not the printability score, to tell the model's reading from the score's rule:
     # the nominal printed cd in nm (failures first), the nominal ratio alone, the deviation from the
@@ -176,7 +184,7 @@ for preset in presets:
     printed = array("d", r["printed_cd"])
     band = array("d", r["pv_band"])
     nominal_fail = array("B", r["fails_nominal"])
-    cds = col(6)
+    cds = array("d", (v / S for v in col(6)))  # DBU
 
     def spread(values):
         out = [math.inf] * n
@@ -199,7 +207,7 @@ for preset in presets:
         v = spread(values)
         if name.startswith("fails"):
             v = [v[i] * 1e9 + geo[i] if v[i] != math.inf else math.inf for i in range(n)]
-        rows.append(("(diagnostic) %s %s" % (preset, name), "", auc(v, positive), best_hits(v, positive, BEST), "", ""))
+        rows.append(("(diagnostic) %s %s" % (label, name), "", auc(v, positive), best_hits(v, positive, BEST), "", ""))
 
 print("Printability against hotspots: %s layer %d/%d, %s" % (os.path.basename(path), L, D, os.path.basename(hot_path)))
 print(("gauges %d, distinct hotspot points %d, positives (within %g nm, " + ("L-inf" if LINF else "Euclidean") + ") %d, base rate %.2f%%; typical width %.1f nm, pitch %.1f nm"

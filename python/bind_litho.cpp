@@ -14,6 +14,7 @@
 #include "convert.hpp"
 #include "linf/litho/calibration.hpp"
 #include "linf/litho/contour.hpp"
+#include "linf/litho/opc.hpp"
 #include "linf/litho/optics.hpp"
 #include "linf/litho/printability.hpp"
 
@@ -126,6 +127,37 @@ void bind_litho(py::module_& m) {
       "The resist threshold at which endless lines of `width` nm at `pitch` nm print at their drawn width, the\n"
       "image blurred across them by the resist's Gaussian `blur` (standard deviation, nm):\n"
       "{'threshold', 'pitch' (as used), 'contrast'}. ValueError when the model does not resolve them.");
+
+  m.def(
+      "opc_correct",
+      [](const py::object& polys, double dbu_nm, const litho::Kernels& kernels, double threshold, double blur,
+         double width, int iterations, int threads) {
+        const LayerInput in(polys);
+        litho::OpcResult r;
+        {
+          py::gil_scoped_release unlocked;
+          litho::OpcRules rules;
+          rules.width = width;
+          rules.iterations = iterations;
+          r = litho::correct_mask(in.flat(), dbu_nm, litho::OpcModel{&kernels, threshold, blur}, rules, threads);
+        }
+        py::dict d;
+        d["points"] = bytes_of(r.points);
+        d["rings"] = bytes_of(r.rings);
+        d["scale"] = r.scale;
+        d["fragments"] = r.fragments;
+        d["kept"] = r.kept;
+        d["rms_epe"] = r.rms_epe;
+        d["max_epe"] = r.max_epe;
+        return d;
+      },
+      py::arg("polygons"), py::arg("dbu_nm"), py::arg("kernels"), py::arg("threshold"), py::arg("blur"),
+      py::arg("width"), py::arg("iterations") = 6, py::arg("threads") = 0,
+      "The layer after an emulated model-based OPC (docs/design.md, 'OPC before the reading'): its edges cut\n"
+      "into fragments and moved until the model (kernels, threshold, resist blur in nm) prints each at its drawn\n"
+      "edge; `width` (nm, the layer's typical width) bounds the moves. {'points', 'rings' (bytes of int64, the\n"
+      "core's flat arrays, the points in DBU / scale), 'scale', 'fragments', 'kept' (polygons with an edge off the axes, left as drawn),\n"
+      "'rms_epe', 'max_epe' (nm, before each iteration and after the last)}. ValueError for bad input.");
 
   m.def(
       "gauge_printability",

@@ -14,6 +14,9 @@
 #   corner only, pv_band >= the nominal printed cd (the failed corner's width is 0); summary.json's
 #   counts of fails; the first gauges re-simulated one by one in this process (no sharing) give the
 #   same printed_cd and fails;
+# - -rd opc=1: refused without a model or as another value than 0/1; with a model the same gauges,
+#   summary.json's litho.opc with the rms edge placement error at least halved, no more nominal
+#   failures than the drawn layer's;
 # - cmd=flow with litho and split=threshold: every calibration gauge has fails none; a verification
 #   gauge has fails != none or its window covers a marker (a selection window); split.json names the
 #   separator; with split=plan both gauge lists carry the litho columns after context and count.
@@ -157,6 +160,36 @@ for j, k in enumerate(picked):
             want and abs(float(want) - float(got)) > 5e-5):
         mismatch.append((k + 1, want, got, litho.FAILS[f_alone[j]], fails[k]))
 expect(not mismatch, "%d gauges re-simulated alone read as in gauges.csv (mismatches: %s)" % (len(picked), mismatch[:5]))
+
+# The emulated OPC (-rd opc=1): refused without a model or with another value; with one, the same
+# gauges, the error falling over its iterations, and no more nominal failures than the drawn
+# layer's (the OPC prints every fragment at its drawn edge; what it leaves is the process window's).
+for extra, says in ((("opc=1",), "opc=1 needs a lithography model"), (("litho=" + MODEL, "opc=2"), "opc must be 0 or 1")):
+    out = os.path.join(work, "bad_opc")
+    r = run(out, "gauges", *extra, ok=False)
+    lines = r.stderr.strip().splitlines()
+    files = os.listdir(out) if os.path.isdir(out) else []
+    expect(r.returncode == 2 and len(lines) == 1 and says in lines[0] and not files,
+           "gauges -rd %s: exit %d, stderr %r, files %s" % (" -rd ".join(extra), r.returncode, lines, files))
+opc_dir = os.path.join(work, "litho_opc")
+print(run(opc_dir, "gauges", "litho=" + MODEL, "opc=1").stdout.strip())
+opc_rows = rows_of(os.path.join(opc_dir, "gauges.csv"))
+expect(opc_rows[0] == BASE + LITHO, "with opc=1 the header is the litho one: %s" % opc_rows[0])
+opc_head = {k: j for j, k in enumerate(opc_rows[0])}
+expect(Counter(key(r, opc_head) + (r[opc_head["geo_score"]],) for r in opc_rows[1:])
+       == Counter(key(r, head) + (r[head["geo_score"]],) for r in body), "with opc=1 the same gauges and geo_scores")
+so = json.load(open(os.path.join(opc_dir, "summary.json")))["litho"]
+opc = so["opc"]
+expect(opc and opc["fragments"] > 0 and opc["iterations"] == len(opc["rms_epe_nm"]) - 1 >= 1,
+       "summary.json: litho.opc with fragments and one error an iteration and after: %s" % opc)
+expect(opc["rms_epe_nm"][-1] < opc["rms_epe_nm"][0] / 2,
+       "the OPC's rms edge placement error falls by half at least: %s" % opc["rms_epe_nm"])
+drawn_nominal = sum(v for k, v in s["fails_nominal"].items() if k != "none")
+opc_nominal = sum(v for k, v in so["fails_nominal"].items() if k != "none")
+expect(opc_nominal <= drawn_nominal, "nominal failures after the OPC %d, drawn %d" % (opc_nominal, drawn_nominal))
+expect(s.get("opc") is None, "without opc=1 summary.json's litho.opc is empty")
+print("opc: %d fragments, rms error %s nm, nominal failures %d -> %d"
+      % (opc["fragments"], opc["rms_epe_nm"], drawn_nominal, opc_nominal))
 
 # The flow: the threshold separator follows fails.
 thr = os.path.join(work, "flow_threshold")

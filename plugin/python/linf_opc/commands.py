@@ -25,7 +25,8 @@
            type), summary.json; on request [-rd all_gauges=1] gauges.csv, gauges.lyrdb, gauges.oas and
            [-rd diagram=1] voronoi.csv, voronoi.oas
   gauges, select, split, flow: [-rd litho=duv193|euv|iccad13|DIR] the gauges scored and ranked by printability on
-           that lithography model (gauges.csv gains geo_score, printed_cd, pv_band, fails)
+           that lithography model (gauges.csv gains geo_score, printed_cd, pv_band, fails); with [-rd opc=1]
+           the layer is read after an emulated model-based OPC, not as drawn
   farthest [-rd box=X1,Y1,X2,Y2] (um: shapes meeting the box): farthest.csv, farthest.oas, summary.json
 """
 import sys
@@ -47,10 +48,10 @@ _SPLIT = ("split", "budget", "verify", "context_radius", "fraction", "seed", "th
 COMMANDS = {
     "farthest": (runs.cmd_farthest, _LAYER + ("box",)),
     "voronoi": (runs.cmd_voronoi, _LAYER + _TILES),
-    "gauges": (runs.cmd_gauges, _LAYER + _TILES + ("window", "rdb_max", "litho")),
-    "select": (runs.cmd_select, _LAYER + _TILES + ("litho",) + _SELECT),
-    "split": (runs.cmd_split, _LAYER + _TILES + ("litho",) + _SELECT + _SPLIT),
-    "flow": (runs.cmd_flow, _LAYER + _TILES + ("rdb_max", "all_gauges", "diagram", "litho") + _SELECT + _SPLIT),
+    "gauges": (runs.cmd_gauges, _LAYER + _TILES + ("window", "rdb_max", "litho", "opc")),
+    "select": (runs.cmd_select, _LAYER + _TILES + ("litho", "opc") + _SELECT),
+    "split": (runs.cmd_split, _LAYER + _TILES + ("litho", "opc") + _SELECT + _SPLIT),
+    "flow": (runs.cmd_flow, _LAYER + _TILES + ("rdb_max", "all_gauges", "diagram", "litho", "opc") + _SELECT + _SPLIT),
 }
 
 # Every argument name, for the macro to collect (a command ignores those it does not read).

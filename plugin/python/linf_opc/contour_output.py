@@ -13,6 +13,7 @@ from array import array
 import pya
 
 from . import core
+from . import layout
 from . import litho
 from . import progress
 from .litho_report import GRID, contours_of
@@ -22,10 +23,11 @@ CONTOUR_DATATYPE = 216  # the editor's printed contours of the plan's windows
 CONTOUR_WINDOWS = 200   # windows simulated for the editor at most, the plan's first
 
 
-def contour_edges(polygons, dbu_um, model, threshold, boxes):
+def contour_edges(polygons, dbu_um, model, threshold, boxes, scale=1):
     """The nominal printed contour (dose 1, in focus, at `threshold`) inside each window box
     (x1, y1, x2, y2 in DBU), simulated at the box's centre: segments (x1, y1, x2, y2) in DBU, those
-    of a window kept where their midpoint lies in its box and in the simulation's valid centre."""
+    of a window kept where their midpoint lies in its box and in the simulation's valid centre.
+    `scale`: the polygons are in DBU / scale (the OPC's corrected layer, litho.opc_mask)."""
     if not boxes:
         return []
     dbu_nm = dbu_um * 1000.0
@@ -34,7 +36,8 @@ def contour_edges(polygons, dbu_um, model, threshold, boxes):
     lo, hi = m // 4, 3 * m // 4 + 1
     xs = [(b[0] + b[2]) / 2.0 for b in boxes]
     ys = [(b[1] + b[3]) / 2.0 for b in boxes]
-    images = core.litho_window_images(core_input(polygons), dbu_nm, xs, ys, model.kernels, m, blur=model.blur_nm)
+    images = core.litho_window_images(core_input(polygons), dbu_nm / scale, [x * scale for x in xs],
+                                      [y * scale for y in ys], model.kernels, m, blur=model.blur_nm)
     step = P / m / dbu_nm  # DBU a grid unit
     out = []
     for k, b in enumerate(boxes):
@@ -52,9 +55,21 @@ def printed_contours(inp, values, chosen):
     """The nominal printed contours of the plan's first windows on the model the flow used, at
     the threshold it calibrated (summary.json): segments in DBU."""
     with open(os.path.join(inp.dir, "summary.json")) as f:
-        threshold = json.load(f)["gauges"]["litho"]["threshold"]
+        lit = json.load(f)["gauges"]["litho"]
+    threshold = lit["threshold"]
     boxes = [w[:4] for w in chosen.windows[:CONTOUR_WINDOWS]]
-    return contour_edges(inp.polygons, inp.dbu, litho.model_of(values), threshold, boxes)
+    model = litho.model_of(values)
+    polygons, scale = inp.polygons, 1
+    if model.opc:
+        # The flow read the layer after its OPC: corrected again here around the windows only,
+        # a period beyond them (what lies farther moves a window's edges by nothing measurable).
+        grow = model.kernels.period / (inp.dbu * 1000.0)
+        around = pya.Region()
+        for b in boxes:
+            around.insert(pya.Box(int(b[0] - grow), int(b[1] - grow), int(b[2] + grow), int(b[3] + grow)))
+        polygons, scale, _ = litho.opc_mask(layout.polygons_of(inp.region & around.merged()), inp.dbu * 1000.0, model,
+                                     threshold, lit["calibration"]["width_nm"])
+    return contour_edges(polygons, inp.dbu, model, threshold, boxes, scale)
 
 
 def add_layer(ly, cell, layer, datatype, model, segments):

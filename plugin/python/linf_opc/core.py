@@ -49,6 +49,7 @@ estimate_pitch = _call("estimate_pitch")
 estimate_pitch_of_gauges = _call("estimate_pitch_of_gauges")
 farthest_voronoi = _call("farthest_voronoi")
 gauge_printability = _call("gauge_printability")
+opc_correct = _call("opc_correct")
 # The model's kernels are a core object held in the process that made them (the batch's).
 litho_kernels = _core.litho_kernels
 calibrate_threshold = _core.calibrate_threshold

@@ -269,6 +269,11 @@ class FlowDialog(pya.QDialog):
         self.litho.currentIndex = (("",) + PRESETS).index(settings.get("litho", "")) if settings.get("litho", "") in \
             PRESETS else 0
         form.addRow("Lithography model", self.litho)
+        self.opc = pya.QCheckBox("read the layer after an emulated model-based OPC (slower)", self)
+        self.opc.checked = settings.get("opc") == "1"
+        form.addRow("OPC", self.opc)
+        self.litho.currentIndexChanged = self._litho_changed
+        self._litho_changed(self.litho.currentIndex)
         self.scheduler = pya.QLineEdit(settings.get("scheduler", ""), self)
         self.scheduler.placeholderText = "tcp://HOST:PORT; blank: this computer"
         form.addRow("Dask scheduler (optional)", self.scheduler)
@@ -293,6 +298,10 @@ class FlowDialog(pya.QDialog):
         for field, modes in ((self.budget, ("plan",)), (self.verify, ("plan",)), (self.fraction, ("stratified",)),
                              (self.seed, ("stratified",)), (self.threshold, ("threshold",))):
             field.enabled = mode in modes
+
+    def _litho_changed(self, index):
+        """The OPC is the model's: without one there is nothing to correct for."""
+        self.opc.enabled = index > 0
 
     def _ok(self):
         """OK: a sentence for what cannot work, a question for what may be a slip."""
@@ -325,6 +334,7 @@ class FlowDialog(pya.QDialog):
                 "fraction": self.fraction.text.strip(), "threshold": self.threshold.text.strip(),
                 "seed": self.seed.text.strip(), "out": self.out.text.strip(),
                 "scheduler": self.scheduler.text.strip(), "litho": (("",) + PRESETS)[max(0, self.litho.currentIndex)],
+                "opc": "1" if self.opc.checked and self.litho.currentIndex > 0 else "0",
                 "builder": list(BUILDER_LABELS)[max(0, self.builder.currentIndex)],
                 "check": list(CHECK_LABELS)[max(0, self.check.currentIndex)]}
 

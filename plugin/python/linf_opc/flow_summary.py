@@ -42,9 +42,12 @@ def flow_results(folder):
     lit = summary.get("gauges", {}).get("litho")
     if lit:
         fails = lit.get("fails", {})
-        rows.append(("Lithography", "%s, threshold %.4g: %d pinch, %d bridge among %d gauges simulated "
+        opc = lit.get("opc")
+        after = (", after an emulated OPC (%d fragments, edge placement error %.2g nm rms)"
+                 % (opc["fragments"], opc["rms_epe_nm"][-1]) if opc else "")
+        rows.append(("Lithography", "%s, threshold %.4g%s: %d pinch, %d bridge among %d gauges simulated "
                      "(printed contours of the plan's windows on layer L/216)"
-                     % (lit.get("model"), lit.get("threshold", 0), fails.get("pinch", 0), fails.get("bridge", 0),
+                     % (lit.get("model"), lit.get("threshold", 0), after, fails.get("pinch", 0), fails.get("bridge", 0),
                         lit.get("simulated", 0))))
     rows.append(("Output folder", os.path.abspath(folder)))
     return rows

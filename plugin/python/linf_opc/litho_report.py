@@ -37,8 +37,9 @@ def _panel(title, draw):
             % (SIDE, SIDE + 16, SIDE, SIDE, draw, SIDE + 12, html.escape(title)))
 
 
-def section(table, region, polygons, dbu_um, model, threshold, rows):
-    """The pictures of `rows` (table rows, most critical first)."""
+def section(table, region, polygons, dbu_um, model, threshold, rows, mask=None):
+    """The pictures of `rows` (table rows, most critical first). `mask`: the layer imaged instead
+    of `polygons` (after the OPC: (flat arrays, scale), litho.opc_mask)."""
     if not rows:
         return ""
     lit = table.litho
@@ -48,9 +49,10 @@ def section(table, region, polygons, dbu_um, model, threshold, rows):
     lo, hi = m // 4, 3 * m // 4 + 1  # the valid centre: half the period around the point
     cx, cy = table.centres()
     xs, ys = [cx[i] for i in rows], [cy[i] for i in rows]
-    flat = core_input(polygons)
-    focus = core.litho_window_images(flat, dbu_nm, xs, ys, model.kernels, m, blur=model.blur_nm)
-    blurred = (core.litho_window_images(flat, dbu_nm, xs, ys, model.defocus, m, blur=model.blur_nm)
+    flat, S = mask if mask is not None else (core_input(polygons), 1)
+    xs, ys = [x * S for x in xs], [y * S for y in ys]
+    focus = core.litho_window_images(flat, dbu_nm / S, xs, ys, model.kernels, m, blur=model.blur_nm)
+    blurred = (core.litho_window_images(flat, dbu_nm / S, xs, ys, model.defocus, m, blur=model.blur_nm)
                if model.defocus is not None
                else focus)
     view = (hi - 1 - lo)  # grid units across the view
@@ -60,7 +62,9 @@ def section(table, region, polygons, dbu_um, model, threshold, rows):
              "dose and focus (solid) and at the process window's corners (dashed: dose %.2f defocused, inner; "
              "dose %.2f in focus, outer), threshold %.4g%s. Each panel is the window's centre, %.4g nm across, "
              "where the simulation is read.</p>"
-             % (1 - DOSE, 1 + DOSE, threshold, ", resist blur %g nm" % model.blur_nm if model.blur_nm else "", P / 2)]
+             % (1 - DOSE, 1 + DOSE, threshold, ", resist blur %g nm" % model.blur_nm if model.blur_nm else "", P / 2)
+             + ("<p>The images are of the layer after an emulated model-based OPC, the panels' grey the drawn "
+                "layer: the contour should follow it.</p>" if getattr(model, "opc", False) else "")]
     for k, i in enumerate(rows):
         g = table[i]
         # Grid (i, j) lies at the window's corner + (i, j) P / m nm; the corner is the point minus P / 2.

@@ -303,8 +303,10 @@ def write_selection(inp, sel, split=None):
     if getattr(sel.result, "litho_model", None) is not None:  # -rd litho: the printed contours of the top contexts
         from . import litho_report
         table = sel.result.gauges
+        # The pictures image the layer the scores read: after the OPC with -rd opc=1.
         extra = litho_report.section(table, inp.region, inp.polygons, inp.dbu, sel.result.litho_model,
-                                     sel.result.litho_threshold, litho_report.rows_to_draw(table, plan))
+                                     sel.result.litho_threshold, litho_report.rows_to_draw(table, plan),
+                                     getattr(sel.result, "litho_mask", None))
     html_report.write(inp.file("report.html"), "Pattern selection: %s %s" % (os.path.basename(inp.path), inp.name),
                       st, sel.study, inp.polygons, inp.dbu, png, plan, extra)
     st["seconds"]["write"] = time.perf_counter() - t0
