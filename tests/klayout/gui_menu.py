@@ -292,8 +292,12 @@ def fill_flow_dialog():
     d.verify.text = "20"
     d.fraction.text = "0.3"
     expect(d.values()["litho"] == "", "no lithography model by default")
+    expect(not d.opc.enabled and d.values()["opc"] == "0", "no OPC without a model, and none by default")
     d.litho.currentIndex = d.litho.findText(dialogs.LITHO_LABELS["euv"])
     expect(d.values()["litho"] == "euv", "the lithography model chosen: %r" % d.values()["litho"])
+    expect(d.opc.enabled, "the OPC can be chosen once a model is")
+    d.opc.checked = True
+    expect(d.values()["opc"] == "1", "the OPC chosen: %r" % d.values()["opc"])
     expect(d.values()["builder"] == "sweep", "the sweep line builds the diagram by default")
     d.builder.currentIndex = d.builder.findText(dialogs.BUILDER_LABELS["subdivision"])
     expect(d.values()["builder"] == "subdivision", "the subdivision chosen: %r" % d.values()["builder"])
@@ -318,7 +322,8 @@ def check_results():
     expect("Markers covered" in text and "Calibration" in text and "Verification" in text and "contexts" in text
            and "Pattern classes" in text and state["flow_out"] in text, "the results dialog: sets, markers, "
            "contexts, classes, the folder")
-    expect("Lithography: euv, threshold" in text, "the results dialog: the model and its fails")
+    expect("Lithography: euv, threshold" in text and "after an emulated OPC" in text,
+           "the results dialog: the model, its OPC and its fails")
     buttons = [c.text for c in d.findChildren(pya.QPushButton)] if hasattr(d, "findChildren") else []
     state["results_shot"] = d.grab().save(os.path.splitext(g["shot"])[0] + "_results_dialog.png")
     state["results_buttons"] = buttons
@@ -338,7 +343,7 @@ def check_remembered():
     expect(d is not None and d.markers.currentText == g["markers"] and d.sizes.text == "5,6"
            and d.budget.text == "50" and d.verify.text == "20" and d.split.currentIndex == 0
            and d.out.text == state["flow_out"] and d.values()["litho"] == "euv" and d.values()["builder"] == "sweep"
-           and d.values()["check"] == "full",
+           and d.values()["check"] == "full" and d.values()["opc"] == "1",
            "the flow dialog remembers its settings")
     if d is not None:
         d.reject()
