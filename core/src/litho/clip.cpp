@@ -1,10 +1,24 @@
 #include "litho/clip.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
 namespace linf::litho {
+
+void check_rings(const FlatPolygons& layer, const std::string& who) {
+  auto fail = [&](const char* what) { throw std::invalid_argument(who + ": " + what); };
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < layer.n_rings; ++k) {
+    const std::int64_t c = layer.rings[k];
+    if (c == 0) fail("a ring of no points in the layer");
+    if (c < 0 && k == 0) fail("the layer's first ring is a hole");
+    at += std::size_t(c < 0 ? -c : c);
+    if (at > layer.n_points) fail("the layer's rings hold more points than its points array");
+  }
+  if (at != layer.n_points) fail("the layer's rings do not add up to its points");
+}
 
 // Sutherland-Hodgman against the box, one side at a time. On a concave ring it can leave
 // zero-width runs along a side; the mask's spectrum integrates edge by edge (Green's theorem),

@@ -96,14 +96,12 @@ OpcResult correct_mask(const FlatPolygons& layer, double dbu_nm, const OpcModel&
   // The shapes and their fragments.
   std::vector<Shape> shapes;
   std::vector<Fragment> frags;
+  check_rings(layer, "opc");
   {
     std::size_t at = 0;
     for (std::size_t k = 0; k < layer.n_rings; ++k) {
       const std::int64_t c = layer.rings[k];
-      if (c == 0) fail("a ring of no points in the layer");
-      if (c < 0 && k == 0) fail("the layer's first ring is a hole");
       const std::size_t n = std::size_t(c < 0 ? -c : c);
-      if (at + n > layer.n_points) fail("the layer's rings hold more points than its points array");
       if (c > 0) shapes.emplace_back();
       Ring2 r;
       r.pts = cleaned(layer.points + 2 * at, n);
@@ -117,7 +115,6 @@ OpcResult correct_mask(const FlatPolygons& layer, double dbu_nm, const OpcModel&
       shapes.back().rings.push_back(std::move(r));
       at += n;
     }
-    if (at != layer.n_points) fail("the layer's rings do not add up to its points");
     for (Shape& s : shapes) {
       s.box[0] = s.box[1] = std::numeric_limits<std::int64_t>::max();
       s.box[2] = s.box[3] = std::numeric_limits<std::int64_t>::min();

@@ -31,13 +31,11 @@ namespace {
 class Layer {
  public:
   Layer(const FlatPolygons& in, std::int64_t cell) : in_(in), cell_(cell) {
+    check_rings(in, "printability");
     std::size_t at = 0;
     for (std::size_t k = 0; k < in.n_rings; ++k) {
       const std::int64_t c = in.rings[k];
-      if (c == 0) fail("a ring of no points in the layer");
-      if (c < 0 && k == 0) fail("the layer's first ring is a hole");
       const std::size_t n = std::size_t(c < 0 ? -c : c);
-      if (at + n > in.n_points) fail("the layer's rings hold more points than its points array");
       if (c > 0) polys_.push_back({k, 0, at, {}});
       Poly& p = polys_.back();
       ++p.rings;
@@ -52,7 +50,6 @@ class Layer {
       }
       at += n;
     }
-    if (at != in.n_points) fail("the layer's rings do not add up to its points");
     for (std::size_t i = 0; i < polys_.size(); ++i) {
       const Poly& p = polys_[i];
       for (std::int64_t gx = floor_div(p.box[0]); gx <= floor_div(p.box[2]); ++gx)
