@@ -384,8 +384,17 @@ def flow_step():
         inside = sum(1 for s in edges if s.is_edge() and windows.bbox().contains(s.edge.p1))
         say("printed contours: %d edges, %d inside the windows' box" % (len(edges), inside))
         expect(len(edges) > 0 and inside == len(edges), "the flow drew the printed contours of its windows on L/216")
+        # With the OPC chosen: the corrected layer inside the windows on L/217, not the drawn one.
+        mi = ly.find_layer(L, 217)
+        mask = pya.Region(cell.begin_shapes_rec(mi)) if mi is not None else pya.Region()
+        drawn = pya.Region(cell.begin_shapes_rec(ly.find_layer(L, D))) & windows
+        say("OPC-corrected layer: %d polygons; XOR with the drawn layer in the windows: %d polygons"
+            % (mask.count(), (mask ^ drawn).count()))
+        expect(mask.count() > 0 and (mask - windows).is_empty() and not (mask ^ drawn).is_empty(),
+               "the flow drew the OPC-corrected layer inside its windows on L/217, moved from the drawn one")
         groups, children = group_children(view, L, D)
-        expect(groups == 1 and 216 in [c[0] for c in children], "the contours in the layer group: %s" % children)
+        expect(groups == 1 and {216, 217} <= set(c[0] for c in children),
+               "the contours and the corrected layer in the layer group: %s" % children)
         expect(view.num_rdbs() == rdbs + 1, "the flow's report database is in the marker browser")
         expect(state.get("flow_shot") is True, "flow dialog screenshot saved")
         expect(state.get("results_shot") is True, "the results dialog came up (screenshot saved)")

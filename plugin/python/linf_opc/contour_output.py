@@ -20,6 +20,7 @@ from .litho_report import GRID, contours_of
 from .polygons import core_input
 
 CONTOUR_DATATYPE = 216  # the editor's printed contours of the plan's windows
+MASK_DATATYPE = 217     # with the OPC: the corrected layer inside those windows
 CONTOUR_WINDOWS = 200   # windows simulated for the editor at most, the plan's first
 
 
@@ -53,23 +54,45 @@ def contour_edges(polygons, dbu_um, model, threshold, boxes, scale=1):
 
 def printed_contours(inp, values, chosen):
     """The nominal printed contours of the plan's first windows on the model the flow used, at
-    the threshold it calibrated (summary.json): segments in DBU."""
+    the threshold it calibrated (summary.json): segments in DBU; with the OPC also the corrected
+    layer inside those windows (pya.Polygons, rounded to the DBU), else None."""
     with open(os.path.join(inp.dir, "summary.json")) as f:
         lit = json.load(f)["gauges"]["litho"]
     threshold = lit["threshold"]
     boxes = [w[:4] for w in chosen.windows[:CONTOUR_WINDOWS]]
     model = litho.model_of(values)
-    polygons, scale = inp.polygons, 1
-    if model.opc:
+    polygons, scale, mask = inp.polygons, 1, None
+    if model.opc and boxes:
         # The flow read the layer after its OPC: corrected again here around the windows only,
         # a period beyond them (what lies farther moves a window's edges by nothing measurable).
         grow = model.kernels.period / (inp.dbu * 1000.0)
-        around = pya.Region()
+        around, inside = pya.Region(), pya.Region()
         for b in boxes:
             around.insert(pya.Box(int(b[0] - grow), int(b[1] - grow), int(b[2] + grow), int(b[3] + grow)))
+            inside.insert(pya.Box(int(b[0]), int(b[1]), int(b[2]), int(b[3])))
         polygons, scale, _ = litho.opc_mask(layout.polygons_of(inp.region & around.merged()), inp.dbu * 1000.0, model,
-                                     threshold, lit["calibration"]["width_nm"])
-    return contour_edges(polygons, inp.dbu, model, threshold, boxes, scale)
+                                            threshold, lit["calibration"]["width_nm"])
+        mask = _region_of(polygons, scale) & inside.merged()
+    return contour_edges(polygons, inp.dbu, model, threshold, boxes, scale), mask
+
+
+def _region_of(flat, scale):
+    """The core's flat arrays in DBU / scale as a Region, rounded to the DBU."""
+    points, rings = flat
+    out, at, poly = pya.Region(), 0, None
+    for c in rings:
+        n = abs(c)
+        ring = [pya.Point(round(points[2 * k] / scale), round(points[2 * k + 1] / scale)) for k in range(at, at + n)]
+        at += n
+        if c > 0:
+            if poly is not None:
+                out.insert(poly)
+            poly = pya.Polygon(ring, True)
+        elif poly is not None:
+            poly.insert_hole(ring, True)
+    if poly is not None:
+        out.insert(poly)
+    return out
 
 
 def add_layer(ly, cell, layer, datatype, model, segments):
@@ -84,3 +107,18 @@ def add_layer(ly, cell, layer, datatype, model, segments):
     shapes.clear()
     for x1, y1, x2, y2 in segments:
         shapes.insert(pya.Edge(round(x1), round(y1), round(x2), round(y2)))
+
+
+def add_mask_layer(ly, cell, layer, datatype, model, mask):
+    """The corrected layer inside the windows on L/217, cleared first (also when this run has
+    none: a flow without the OPC leaves no stale mask)."""
+    index = ly.find_layer(layer, MASK_DATATYPE)
+    if index is None and mask is None:
+        return
+    if index is None:
+        index = ly.insert_layer(pya.LayerInfo(layer, MASK_DATATYPE, "OPC-corrected layer (%s) %d/%d"
+                                              % (model, layer, datatype)))
+    shapes = cell.shapes(index)
+    shapes.clear()
+    if mask is not None:
+        shapes.insert(mask)

@@ -22,6 +22,7 @@ STYLES = {DATATYPE_BASE + KINDS.index("internal"): ("internal (widths)", 0x1f77b
           GAUGE_DATATYPE + 5: ("gauge labels", 0x404040, False),
           WINDOW_DATATYPE: ("pattern windows", 0x2ca02c, True),
           216: ("printed contours (nominal)", 0x1f3fb4, True),
+          217: ("OPC-corrected layer", 0xff7f0e, True),
           240: ("farthest diagram", 0x8c564b, True),
           241: ("smallest touching square", 0xe377c2, True)}
 HOLLOW = 1  # KLayout's dither pattern 1: no fill, the frame only

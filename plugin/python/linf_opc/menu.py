@@ -309,10 +309,10 @@ def run_flow():
             inp.out.commit()
         finally:
             inp.out.abort()  # no-op after a commit; a failed run leaves no partial files
-        contours = []
+        contours, mask = [], None
         if values.get("litho"):
             bar.start("printed contours (core)")
-            contours = contour_output.printed_contours(inp, values, chosen)
+            contours, mask = contour_output.printed_contours(inp, values, chosen)
         bar.start("drawing")
         rdb = pya.ReportDatabase("flow")
         rdb.load(os.path.join(inp.dir, rdb_name))
@@ -320,6 +320,7 @@ def run_flow():
         def draw():
             selection_output.add_layer(ly, cv.cell, chosen, l, d)
             contour_output.add_layer(ly, cv.cell, l, d, values.get("litho"), contours)
+            contour_output.add_mask_layer(ly, cv.cell, l, d, values.get("litho"), mask)
         _undoable(view, ly, "OPC pattern flow on %s" % values["layer"], draw, (l, d))
         index = _add_report(view, rdb)
         mw.message(line, 20000)
