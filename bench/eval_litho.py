@@ -18,7 +18,9 @@
 # "not resolved" and no figures. The models are the commands' (litho.model_of: the process window, dose
 # +-2% and the preset's defocus corner). Diagnostic rows per preset rank by other readings of the same
 # simulation (the printed cd in nm, the nominal ratio, the deviation either way, the pv band, the
-# failure flag), to tell the model's reading from the score's rule. -rd opc=1: each preset again,
+# failure flag), to tell the model's reading from the score's rule. A line counts the positives
+# whose own measurement line passes near a hotspot point (those that measure it, not its
+# neighbours): what a score read on each gauge's line can rank first. -rd opc=1: each preset again,
 # read after the emulated OPC (litho.opc_mask, as -rd opc=1 reads: contexts of the drawn layer).
 import csv
 import math
@@ -123,6 +125,36 @@ log("eval_litho: %s %d/%d: %d gauges, typical width %.1f nm, pitch %.1f nm (%.1f
 hot = read_hotspots(hot_path)
 positive = near_flags(list(cx), list(cy), hot, NEAR_NM / dbu_nm, LINF)
 base = sum(positive) / n
+
+
+def measuring(points, r_nm):
+    """How many positives have their measurement line within each distance of r_nm (nm) of a
+    hotspot point: the gauges that measure the failing place, not its neighbours."""
+    r = NEAR_NM / dbu_nm
+    grid = {}
+    for x, y in points:
+        grid.setdefault((math.floor(x / r), math.floor(y / r)), []).append((x, y))
+    counts = [0] * len(r_nm)
+    for i in range(n):
+        if not positive[i]:
+            continue
+        x1, y1, x2, y2 = reals[10 * i:10 * i + 4]
+        dx, dy = x2 - x1, y2 - y1
+        length = dx * dx + dy * dy
+        best = math.inf
+        gx, gy = math.floor(cx[i] / r), math.floor(cy[i] / r)
+        for ax in (gx - 1, gx, gx + 1):
+            for ay in (gy - 1, gy, gy + 1):
+                for px, py in grid.get((ax, ay), ()):
+                    t = 0.0 if length == 0 else max(0.0, min(1.0, ((px - x1) * dx + (py - y1) * dy) / length))
+                    best = min(best, math.hypot(px - x1 - t * dx, py - y1 - t * dy))
+        for k, d in enumerate(r_nm):
+            counts[k] += best * dbu_nm <= d
+    return counts
+
+
+MEASURING_NM = (2, 5, 10)
+measures = measuring(hot, MEASURING_NM)
 rows = [("geometric score", "", auc(list(table.scores()), positive), best_hits(list(table.scores()), positive, BEST),
          "", "")]
 
@@ -212,6 +244,8 @@ for preset, after_opc in variants:
 print("Printability against hotspots: %s layer %d/%d, %s" % (os.path.basename(path), L, D, os.path.basename(hot_path)))
 print(("gauges %d, distinct hotspot points %d, positives (within %g nm, " + ("L-inf" if LINF else "Euclidean") + ") %d, base rate %.2f%%; typical width %.1f nm, pitch %.1f nm"
       ) % (n, len(hot), NEAR_NM, sum(positive), 100 * base, width * dbu_nm, pitch * dbu_nm))
+print("positives whose measurement line passes within %s nm of a hotspot point: %s (the rest are its neighbours)"
+      % ("/".join(str(d) for d in MEASURING_NM), "/".join(str(c) for c in measures)))
 print("| scorer | threshold | ROC AUC | hit rate of best %d | vs base rate | pinch/bridge | not simulable |" % BEST)
 print("|---|---|---|---|---|---|---|")
 for name, thr, a, hit, fb, ns in rows:
