@@ -16,7 +16,7 @@ from . import core
 from . import layout
 from . import litho
 from . import progress
-from .litho_report import GRID, contours_of
+from .litho_report import GRID, contours_of, region_of
 from .polygons import core_input
 
 CONTOUR_DATATYPE = 216  # the editor's printed contours of the plan's windows
@@ -72,27 +72,8 @@ def printed_contours(inp, values, chosen):
             inside.insert(pya.Box(int(b[0]), int(b[1]), int(b[2]), int(b[3])))
         polygons, scale, _ = litho.opc_mask(layout.polygons_of(inp.region & around.merged()), inp.dbu * 1000.0, model,
                                             threshold, lit["calibration"]["width_nm"])
-        mask = _region_of(polygons, scale) & inside.merged()
+        mask = region_of(*polygons, scale) & inside.merged()
     return contour_edges(polygons, inp.dbu, model, threshold, boxes, scale), mask
-
-
-def _region_of(flat, scale):
-    """The core's flat arrays in DBU / scale as a Region, rounded to the DBU."""
-    points, rings = flat
-    out, at, poly = pya.Region(), 0, None
-    for c in rings:
-        n = abs(c)
-        ring = [pya.Point(round(points[2 * k] / scale), round(points[2 * k + 1] / scale)) for k in range(at, at + n)]
-        at += n
-        if c > 0:
-            if poly is not None:
-                out.insert(poly)
-            poly = pya.Polygon(ring, True)
-        elif poly is not None:
-            poly.insert_hole(ring, True)
-    if poly is not None:
-        out.insert(poly)
-    return out
 
 
 def add_layer(ly, cell, layer, datatype, model, segments):

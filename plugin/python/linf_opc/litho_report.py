@@ -22,6 +22,25 @@ PICTURES = 8  # contexts drawn
 SIDE = 260   # px of one panel
 
 
+def region_of(points, rings, scale=1):
+    """The core's flat arrays as a Region, their coordinates divided by `scale` and rounded (1:
+    exact, in their own units)."""
+    out, at, poly = pya.Region(), 0, None
+    for c in rings:
+        n = abs(c)
+        ring = [pya.Point(round(points[2 * k] / scale), round(points[2 * k + 1] / scale)) for k in range(at, at + n)]
+        at += n
+        if c > 0:
+            if poly is not None:
+                out.insert(poly)
+            poly = pya.Polygon(ring, True)
+        elif poly is not None:
+            poly.insert_hole(ring, True)
+    if poly is not None:
+        out.insert(poly)
+    return out
+
+
 def contours_of(values, m, lo, hi, level):
     """Marching squares on the grid cells [lo, hi) x [lo, hi) (core.litho_contours): segments
     (x1, y1, x2, y2) in grid units where the image crosses `level`."""
@@ -50,6 +69,7 @@ def section(table, region, polygons, dbu_um, model, threshold, rows, mask=None):
     cx, cy = table.centres()
     xs, ys = [cx[i] for i in rows], [cy[i] for i in rows]
     flat, S = mask if mask is not None else (core_input(polygons), 1)
+    corrected = region_of(*flat) if mask is not None else None  # in DBU / S, exactly
     xs, ys = [x * S for x in xs], [y * S for y in ys]
     focus = core.litho_window_images(flat, dbu_nm / S, xs, ys, model.kernels, m, blur=model.blur_nm)
     blurred = (core.litho_window_images(flat, dbu_nm / S, xs, ys, model.defocus, m, blur=model.blur_nm)
@@ -63,8 +83,8 @@ def section(table, region, polygons, dbu_um, model, threshold, rows, mask=None):
              "dose %.2f in focus, outer), threshold %.4g%s. Each panel is the window's centre, %.4g nm across, "
              "where the simulation is read.</p>"
              % (1 - DOSE, 1 + DOSE, threshold, ", resist blur %g nm" % model.blur_nm if model.blur_nm else "", P / 2)
-             + ("<p>The images are of the layer after an emulated model-based OPC, the panels' grey the drawn "
-                "layer: the contour should follow it.</p>" if getattr(model, "opc", False) else "")]
+             + ("<p>The images are of the layer after an emulated model-based OPC (orange on the left), the "
+                "panels' grey the drawn layer: the contour should follow it.</p>" if mask is not None else "")]
     for k, i in enumerate(rows):
         g = table[i]
         # Grid (i, j) lies at the window's corner + (i, j) P / m nm; the corner is the point minus P / 2.
@@ -79,6 +99,13 @@ def section(table, region, polygons, dbu_um, model, threshold, rows, mask=None):
             for ring in [list(poly.each_point_hull())] + [list(poly.each_point_hole(h)) for h in range(poly.holes())]:
                 d.append("M" + " L".join("%.1f %.1f" % (X(p.x * dbu_nm), Y(p.y * dbu_nm)) for p in ring) + "Z")
         drawn = '<path fill="#bbbbbb" fill-rule="evenodd" d="%s"/>' % " ".join(d)
+        if corrected is not None:  # the OPC's mask over the drawn layer, as an outline
+            c = []
+            for poly in (corrected & pya.Region(pya.Box(box.left * S, box.bottom * S, box.right * S, box.top * S))).each():
+                for ring in [list(poly.each_point_hull())] + [list(poly.each_point_hole(h)) for h in range(poly.holes())]:
+                    c.append("M" + " L".join("%.1f %.1f" % (X(p.x * dbu_nm / S), Y(p.y * dbu_nm / S)) for p in ring)
+                             + "Z")
+            drawn += '<path fill="none" stroke="#ff7f0e" stroke-width="1" d="%s"/>' % " ".join(c)
         line = ('<line x1="%.1f" y1="%.1f" x2="%.1f" y2="%.1f" stroke="#d62728" stroke-width="2"/>'
                 % (X(g.x1 * dbu_nm), Y(g.y1 * dbu_nm), X(g.x2 * dbu_nm), Y(g.y2 * dbu_nm)))
         outline = '<path fill="none" stroke="#888" stroke-width="0.6" d="%s"/>' % " ".join(d)
@@ -95,7 +122,8 @@ def section(table, region, polygons, dbu_um, model, threshold, rows, mask=None):
             g.rank, g.type, g.cd * dbu_nm, "-" if pcd != pcd else "%.4g nm" % pcd,
             "-" if lit.pv_band[i] != lit.pv_band[i] else "%.4g nm" % lit.pv_band[i], FAILS[lit.fails[i]])
         parts.append('<div class="litho-pair">%s%s<br/><small>%s</small></div>' % (
-            _panel("drawn", drawn + line), _panel("printed", outline + "".join(printed) + line), html.escape(about)))
+            _panel("drawn" if corrected is None else "drawn (grey), after the OPC (orange)", drawn + line),
+            _panel("printed", outline + "".join(printed) + line), html.escape(about)))
     return "\n".join(parts)
 
 
