@@ -21,8 +21,8 @@ namespace {
 
 // An edge's piece that moves as one, along the edge's outward normal (nx, ny), by `move` nm.
 struct Fragment {
-  std::int64_t a0 = 0;        // DBU along the edge from its first point: where the fragment starts
-  std::int64_t cx2 = 0, cy2 = 0;  // its middle on the drawn edge, half DBU
+  std::int64_t a0 = 0;            // units along the edge from its first point: where it starts
+  std::int64_t cx2 = 0, cy2 = 0;  // its middle on the drawn edge, half units
   int nx = 0, ny = 0;
 };
 
@@ -158,7 +158,7 @@ OpcResult correct_mask(const FlatPolygons& layer, double dbu_nm, const OpcModel&
   out.scale = kOpcScale;
   for (const Shape& s : shapes) out.kept += s.kept;
 
-  // A shape's rings with the moves (nm, rounded to the DBU): for each edge a corner where the
+  // A shape's rings with the moves (nm, rounded to the unit): for each edge a corner where the
   // previous edge's last fragment and this edge's first meet, then a jog wherever two of its
   // fragments moved differently.
   auto rebuild = [&](const Shape& s, const std::vector<double>& move, std::vector<std::int64_t>& pts,
