@@ -47,7 +47,7 @@ struct OpcResult {
 // Rules (docs/design.md, "OPC before the reading"):
 // - Fragments about the model's resolution long: an axis-parallel edge of length L is cut into
 //   max(1, round(L / r)) of equal length (ends on the quarter-DBU grid), r = the period / the
-//   kernels' half size, lambda / (NA (1 + sigma_out)) for a preset (21.3 nm for euv).
+//   kernels' half size, about lambda / (NA (1 + sigma_out)) for a preset (22.3 nm for euv).
 // - A fragment's error is read on the image along its outward normal through its middle, blurred
 //   by the resist: e = (I - t) / -dI/dn (the printed edge lies e beyond the drawn one); +-width / 5
 //   where the image has no falling edge there; never more than the width.
