@@ -1,7 +1,7 @@
 # The default `cmd=flow` against the flow with every file on request, as people run them, the
 # variants alternately in one run (so that a busy machine slows all alike), N runs each; best and
 # median wall time, CPU time, bytes written, and the ratios.
-#   python3 bench/bench_flow_default.py FILE L/D MARKERS [--runs 3] [--litho PRESET] [-- k=v ...]  (k=v: more -rd arguments)
+#   python3 bench/bench_flow_default.py FILE L/D MARKERS [--runs 3] [--litho PRESET [--opc]] [-- k=v ...]  (k=v: more -rd arguments)
 # e.g. python3 bench/bench_flow_default.py ../shared/data/iccad16/testcase3.oas 1000/0 ../shared/data/iccad16/test3.csv
 # "full" is the flow as it was before the defaults changed: every file (all_gauges=1, diagram=1),
 # the two-layouts experiment (halves=1), every gauge up to 100,000 a type in the report
@@ -14,7 +14,9 @@
 # -b`, an empty script) is timed in the same rounds.
 # With --litho PRESET the variants are instead the default flow without and with printability
 # scoring (-rd litho=PRESET), under each launcher, and the ratios printed are that flow's time over
-# the default's on the same launcher (the printability issue's goal: at most 2x).
+# the default's on the same launcher (the printability issue's goal: at most 2x). --opc adds the
+# flow with printability read after the emulated OPC (-rd opc=1) under python3, its ratios against
+# the default and against printability without it.
 import os
 import resource
 import statistics
@@ -73,11 +75,17 @@ def main(argv):
         VARIANTS.clear()
         VARIANTS.update({"default": ("python3", []), "litho": ("python3", ["litho=" + preset]),
                          "default, klayout -b": ("klayout", []), "litho, klayout -b": ("klayout", ["litho=" + preset])})
+    if "--opc" in argv:
+        del argv[argv.index("--opc")]
+        if "litho" not in VARIANTS:
+            sys.exit("--opc needs --litho PRESET")
+        VARIANTS["litho, opc"] = ("python3", VARIANTS["litho"][1] + ["opc=1"])
     if "--runs" in argv:
         runs = int(argv[argv.index("--runs") + 1])
         del argv[argv.index("--runs"):argv.index("--runs") + 2]
     if len(argv) != 3:
-        sys.exit("usage: python3 bench/bench_flow_default.py FILE L/D MARKERS [--runs 3] [--litho PRESET] [-- k=v ...]")
+        sys.exit("usage: python3 bench/bench_flow_default.py FILE L/D MARKERS [--runs 3] [--litho PRESET [--opc]] "
+                 "[-- k=v ...]")
     path, layer, markers = argv
     got = {v: [] for v in VARIANTS}
     start = []
@@ -100,6 +108,8 @@ def main(argv):
                  got[v][0][2] / 1e6))
     pairs = [("litho", "default"), ("litho, klayout -b", "default, klayout -b")] if "litho" in best else \
         [("full, klayout -b", "default"), ("full", "default"), ("full, klayout -b", "default, klayout -b")]
+    if "litho, opc" in best:
+        pairs += [("litho, opc", "default"), ("litho, opc", "litho")]
     for slow, fast in pairs:
         f, d = best[slow], best[fast]
         print("%s / %s: wall best %.2fx, median %.2fx; cpu best %.2fx, median %.2fx"
