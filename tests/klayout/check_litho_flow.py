@@ -16,7 +16,7 @@
 #   same printed_cd and fails;
 # - -rd opc=1: refused without a model or as another value than 0/1; with a model the same gauges,
 #   summary.json's litho.opc with the rms edge placement error at least halved, no more nominal
-#   failures than the drawn layer's;
+#   failures than the drawn layer's; the flow's report outlines the corrected layer in its pictures;
 # - cmd=flow with litho and split=threshold: every calibration gauge has fails none; a verification
 #   gauge has fails != none or its window covers a marker (a selection window); split.json names the
 #   separator; with split=plan both gauge lists carry the litho columns after context and count.
@@ -190,6 +190,18 @@ expect(opc_nominal <= drawn_nominal, "nominal failures after the OPC %d, drawn %
 expect(s.get("opc") is None, "without opc=1 summary.json's litho.opc is empty")
 print("opc: %d fragments, rms error %s nm, nominal failures %d -> %d"
       % (opc["fragments"], opc["rms_epe_nm"], drawn_nominal, opc_nominal))
+# The flow with the OPC: the report's pictures say so and outline the corrected layer (orange)
+# over the drawn one in every left panel.
+opc_flow = os.path.join(work, "flow_opc")
+print(run(opc_flow, "flow", "litho=" + MODEL, "opc=1", "markers=" + arg("markers")).stdout.strip())
+page = open(os.path.join(opc_flow, "report.html")).read()
+pairs = page.count('class="litho-pair"')
+outlined = page.count('<path fill="none" stroke="#ff7f0e"')
+expect("after an emulated model-based OPC" in page and pairs >= 1 and outlined == pairs,
+       "report.html with opc=1: the OPC said, the corrected layer outlined in each of the %d pictures (%d)"
+       % (pairs, outlined))
+expect(json.load(open(os.path.join(opc_flow, "summary.json")))["gauges"]["litho"]["opc"]["fragments"]
+       == opc["fragments"], "the flow's OPC corrects the same fragments as the gauges command's")
 
 # The flow: the threshold separator follows fails.
 thr = os.path.join(work, "flow_threshold")
