@@ -49,10 +49,10 @@ struct OpcResult {
 //   max(1, round(L / r)) of equal length (ends on the quarter-DBU grid), r = the period / the
 //   kernels' half size, about lambda / (NA (1 + sigma_out)) for a preset (22.3 nm for euv).
 // - A fragment's error is read on the image along its outward normal through its middle, blurred
-//   by the resist: e = (I - t) / -dI/dn (the printed edge lies e beyond the drawn one); +-width / 5
-//   where the image has no falling edge there; never more than the width.
+//   by the resist: e = (I - t) / -dI/dn (the printed edge lies e beyond the drawn one);
+//   +-width / 10 where the image has no falling edge there; never more than the width.
 // - Every iteration reads all fragments on the same mask, then moves each by -g e, at most
-//   width / 5, its total move within [-width / 4, +width / 2]; g starts at `feedback` and halves
+//   width / 10, its total move within [-width / 4, +width / 2]; g starts at `feedback` and halves
 //   each time the fragment's error changes sign.
 // - The mask is rebuilt with the moves rounded to a quarter DBU: jogs between fragments, corners
 //   where the moved lines of two edges meet. Polygons with an edge off the axes stay as drawn.
