@@ -91,7 +91,8 @@ OpcResult correct_mask(const FlatPolygons& layer, double dbu_nm, const OpcModel&
   W -= W % 4;
   if (W < 8) fail("the model's period is below one database unit");
   const std::int64_t T = W / 2;
-  const double fragment = P / kernels.half(), step = rules.width / 10, inward = rules.width / 4, outward = rules.width / 2;
+  const double fragment = P / kernels.half(), step = rules.width / 10;
+  const double inward = rules.width / 4, outward = rules.width / 2;
 
   // The shapes and their fragments.
   std::vector<Shape> shapes;
@@ -120,8 +121,8 @@ OpcResult correct_mask(const FlatPolygons& layer, double dbu_nm, const OpcModel&
       s.box[2] = s.box[3] = std::numeric_limits<std::int64_t>::min();
       for (const Ring2& r : s.rings)
         for (const Point& q : r.pts)
-          s.box[0] = std::min(s.box[0], q.x), s.box[1] = std::min(s.box[1], q.y), s.box[2] = std::max(s.box[2], q.x),
-          s.box[3] = std::max(s.box[3], q.y);
+          s.box[0] = std::min(s.box[0], q.x), s.box[1] = std::min(s.box[1], q.y),
+          s.box[2] = std::max(s.box[2], q.x), s.box[3] = std::max(s.box[3], q.y);
       if (s.kept) continue;
       for (Ring2& r : s.rings) {
         // The material lies left of an edge when an outer ring runs counter-clockwise or a hole

@@ -47,8 +47,8 @@ OpcResult correct(const std::vector<Polygon>& layer, int threads = 0, int iterat
 
 // Printed widths along measurement lines of length cd through (x, y) (DBU), nominal dose and
 // focus, on a mask whose points are in DBU / scale.
-std::vector<double> printed(const FlatPolygons& mask, std::int64_t scale, const std::vector<std::array<double, 3>>& along_x,
-                            const std::vector<std::array<double, 3>>& along_y) {
+using Lines = std::vector<std::array<double, 3>>;
+std::vector<double> printed(const FlatPolygons& mask, std::int64_t scale, const Lines& along_x, const Lines& along_y) {
   const double S = double(scale);
   std::vector<double> cx, cy, x1, y1, x2, y2, cd;
   std::vector<std::int32_t> type;
@@ -87,15 +87,14 @@ double area(const std::int64_t* p, std::size_t n) {
 // their drawn length and width.
 TEST(Opc, IsolatedWiresPrintAtTheirDrawnLengthAndWidth) {
   const std::vector<Polygon> layer{box(0, 0, 200, 22), box(0, 2000, 200, 2016)};
-  const std::vector<std::array<double, 3>> length{{100, 11, 200}, {100, 2008, 200}};
-  const std::vector<std::array<double, 3>> width{{100, 11, 22}, {100, 2008, 16}};
+  const Lines length{{100, 11, 200}, {100, 2008, 200}}, width{{100, 11, 22}, {100, 2008, 16}};
   const PolygonArrays drawn = flat_of(layer);
   const std::vector<double> before = printed(drawn.view(), 1, length, width);
   const OpcResult r = correct(layer);
   const std::vector<double> after = printed(r.view(), r.scale, length, width);
   for (std::size_t k = 0; k < 2; ++k)
-    std::printf("[ litho ] isolated %g x 200 nm wire under euv: printed length %.2f -> %.2f nm, width %.2f -> %.2f nm\n",
-                width[k][2], before[k], after[k], before[2 + k], after[2 + k]);
+    std::printf("[ litho ] isolated %g x 200 nm wire under euv: printed length %.2f -> %.2f nm, "
+                "width %.2f -> %.2f nm\n", width[k][2], before[k], after[k], before[2 + k], after[2 + k]);
   // The drawn wires must print visibly off, or the rest says nothing.
   for (const double v : before) ASSERT_FALSE(std::isnan(v));
   EXPECT_GT(std::abs(before[0] - 200), 6.0);
@@ -136,8 +135,9 @@ TEST(Opc, LinesOnTargetStay) {
 // The moves are read all at once an iteration: the same bytes for any number of threads; rings
 // given clockwise come out as the same shapes.
 TEST(Opc, SameForThreadsAndOrientation) {
-  std::vector<Polygon> layer{box(0, 0, 200, 22), box(0, 60, 22, 400), box(80, 60, 300, 82),
-                             Polygon{{{100, 120}, {300, 120}, {300, 300}, {100, 300}}, {{{140, 160}, {140, 260}, {260, 260}, {260, 160}}}}};
+  const Polygon ring{{{100, 120}, {300, 120}, {300, 300}, {100, 300}},
+                     {{{140, 160}, {140, 260}, {260, 260}, {260, 160}}}};  // a hole, clockwise
+  std::vector<Polygon> layer{box(0, 0, 200, 22), box(0, 60, 22, 400), box(80, 60, 300, 82), ring};
   const OpcResult one = correct(layer, 1, 3), two = correct(layer, 2, 3);
   EXPECT_EQ(one.points, two.points);
   EXPECT_EQ(one.rings, two.rings);
