@@ -76,30 +76,29 @@ def printed_contours(inp, values, chosen):
     return contour_edges(polygons, inp.dbu, model, threshold, boxes, scale), mask
 
 
-def add_layer(ly, cell, layer, datatype, model, segments):
-    """The printed contours as edges on L/216, cleared first (also when this run has none)."""
-    index = ly.find_layer(layer, CONTOUR_DATATYPE)
-    if index is None and not segments:
-        return
+def _cleared(ly, cell, layer, datatype, kind, name, drawing):
+    """The shapes of L/kind, cleared, made with `name` when missing; None when it is missing and
+    nothing is to be drawn (a run without them leaves no stale ones, and makes no empty layer)."""
+    index = ly.find_layer(layer, kind)
+    if index is None and not drawing:
+        return None
     if index is None:
-        index = ly.insert_layer(pya.LayerInfo(layer, CONTOUR_DATATYPE, "printed contours (%s) %d/%d"
-                                              % (model, layer, datatype)))
+        index = ly.insert_layer(pya.LayerInfo(layer, kind, "%s %d/%d" % (name, layer, datatype)))
     shapes = cell.shapes(index)
     shapes.clear()
-    for x1, y1, x2, y2 in segments:
+    return shapes
+
+
+def add_layer(ly, cell, layer, datatype, model, segments):
+    """The printed contours as edges on L/216, cleared first (also when this run has none)."""
+    shapes = _cleared(ly, cell, layer, datatype, CONTOUR_DATATYPE, "printed contours (%s)" % model, bool(segments))
+    for x1, y1, x2, y2 in segments:  # none when shapes is None
         shapes.insert(pya.Edge(round(x1), round(y1), round(x2), round(y2)))
 
 
 def add_mask_layer(ly, cell, layer, datatype, model, mask):
     """The corrected layer inside the windows on L/217, cleared first (also when this run has
     none: a flow without the OPC leaves no stale mask)."""
-    index = ly.find_layer(layer, MASK_DATATYPE)
-    if index is None and mask is None:
-        return
-    if index is None:
-        index = ly.insert_layer(pya.LayerInfo(layer, MASK_DATATYPE, "OPC-corrected layer (%s) %d/%d"
-                                              % (model, layer, datatype)))
-    shapes = cell.shapes(index)
-    shapes.clear()
-    if mask is not None:
+    shapes = _cleared(ly, cell, layer, datatype, MASK_DATATYPE, "OPC-corrected layer (%s)" % model, mask is not None)
+    if mask is not None:  # shapes is None only without a mask
         shapes.insert(mask)

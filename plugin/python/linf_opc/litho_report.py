@@ -94,21 +94,22 @@ def section(table, region, polygons, dbu_um, model, threshold, rows, mask=None):
         Y = lambda y_nm: SIDE - (y_nm - y0) / (P / m) * s  # noqa: E731
         box = pya.Box(int((x0) / dbu_nm) - 1, int(y0 / dbu_nm) - 1, int((x0 + view * P / m) / dbu_nm) + 1,
                       int((y0 + view * P / m) / dbu_nm) + 1)
-        d = []
-        for poly in (region & pya.Region(box)).each():
-            for ring in [list(poly.each_point_hull())] + [list(poly.each_point_hole(h)) for h in range(poly.holes())]:
-                d.append("M" + " L".join("%.1f %.1f" % (X(p.x * dbu_nm), Y(p.y * dbu_nm)) for p in ring) + "Z")
-        drawn = '<path fill="#bbbbbb" fill-rule="evenodd" d="%s"/>' % " ".join(d)
-        if corrected is not None:  # the OPC's mask over the drawn layer, as an outline
-            c = []
-            for poly in (corrected & pya.Region(pya.Box(box.left * S, box.bottom * S, box.right * S, box.top * S))).each():
+
+        def path(layer, scale):  # the layer (in DBU / scale) inside the view, as SVG path data
+            d = []
+            clip = pya.Box(box.left * scale, box.bottom * scale, box.right * scale, box.top * scale)
+            for poly in (layer & pya.Region(clip)).each():
                 for ring in [list(poly.each_point_hull())] + [list(poly.each_point_hole(h)) for h in range(poly.holes())]:
-                    c.append("M" + " L".join("%.1f %.1f" % (X(p.x * dbu_nm / S), Y(p.y * dbu_nm / S)) for p in ring)
-                             + "Z")
-            drawn += '<path fill="none" stroke="#ff7f0e" stroke-width="1" d="%s"/>' % " ".join(c)
+                    d.append("M" + " L".join("%.1f %.1f" % (X(p.x * dbu_nm / scale), Y(p.y * dbu_nm / scale))
+                                             for p in ring) + "Z")
+            return " ".join(d)
+        d = path(region, 1)
+        drawn = '<path fill="#bbbbbb" fill-rule="evenodd" d="%s"/>' % d
+        if corrected is not None:  # the OPC's mask over the drawn layer, as an outline
+            drawn += '<path fill="none" stroke="#ff7f0e" stroke-width="1" d="%s"/>' % path(corrected, S)
         line = ('<line x1="%.1f" y1="%.1f" x2="%.1f" y2="%.1f" stroke="#d62728" stroke-width="2"/>'
                 % (X(g.x1 * dbu_nm), Y(g.y1 * dbu_nm), X(g.x2 * dbu_nm), Y(g.y2 * dbu_nm)))
-        outline = '<path fill="none" stroke="#888" stroke-width="0.6" d="%s"/>' % " ".join(d)
+        outline = '<path fill="none" stroke="#888" stroke-width="0.6" d="%s"/>' % d
         printed = []
         for values, level, style in ((array("d", blurred[k]), threshold / (1 - DOSE) ** 2, ' stroke-dasharray="3,2"'),
                                      (array("d", focus[k]), threshold / (1 + DOSE) ** 2, ' stroke-dasharray="3,2"'),
