@@ -58,25 +58,26 @@ def read_hotspots(p):
         return sorted({(float(r["x"]), float(r["y"])) for r in csv.DictReader(f)})  # identical points count once
 
 
-def near_flags(xs, ys, points, r, linf=False):
-    """1 where (x, y) lies within r (Euclidean; L-inf with linf) of one of the points, by a grid of side r."""
-    grid = {}
-    for x, y in points:
-        grid.setdefault((math.floor(x / r), math.floor(y / r)), []).append((x, y))
-    out = bytearray(len(xs))
-    for i, (x, y) in enumerate(zip(xs, ys)):
-        gx, gy = math.floor(x / r), math.floor(y / r)
+class Grid:
+    """Points bucketed in squares of side r: the points within r of (x, y) are among near(x, y)."""
+
+    def __init__(self, points, r):
+        self.r, self.cells = r, {}
+        for x, y in points:
+            self.cells.setdefault((math.floor(x / r), math.floor(y / r)), []).append((x, y))
+
+    def near(self, x, y):
+        gx, gy = math.floor(x / self.r), math.floor(y / self.r)
         for ax in (gx - 1, gx, gx + 1):
             for ay in (gy - 1, gy, gy + 1):
-                for px, py in grid.get((ax, ay), ()):
-                    if (max(abs(px - x), abs(py - y)) <= r) if linf else ((px - x) ** 2 + (py - y) ** 2 <= r * r):
-                        out[i] = 1
-                        break
-                if out[i]:
-                    break
-            if out[i]:
-                break
-    return out
+                yield from self.cells.get((ax, ay), ())
+
+
+def near_flags(xs, ys, points, r, linf=False):
+    """1 where (x, y) lies within r (Euclidean; L-inf with linf) of one of the points."""
+    grid = Grid(points, r)
+    return bytearray(any((max(abs(px - x), abs(py - y)) <= r) if linf else ((px - x) ** 2 + (py - y) ** 2 <= r * r)
+                         for px, py in grid.near(x, y)) for x, y in zip(xs, ys))
 
 
 def auc(scores, positive):
@@ -130,10 +131,7 @@ base = sum(positive) / n
 def measuring(points, r_nm):
     """How many positives have their measurement line within each distance of r_nm (nm) of a
     hotspot point: the gauges that measure the failing place, not its neighbours."""
-    r = NEAR_NM / dbu_nm
-    grid = {}
-    for x, y in points:
-        grid.setdefault((math.floor(x / r), math.floor(y / r)), []).append((x, y))
+    grid = Grid(points, NEAR_NM / dbu_nm)
     counts = [0] * len(r_nm)
     for i in range(n):
         if not positive[i]:
@@ -142,12 +140,9 @@ def measuring(points, r_nm):
         dx, dy = x2 - x1, y2 - y1
         length = dx * dx + dy * dy
         best = math.inf
-        gx, gy = math.floor(cx[i] / r), math.floor(cy[i] / r)
-        for ax in (gx - 1, gx, gx + 1):
-            for ay in (gy - 1, gy, gy + 1):
-                for px, py in grid.get((ax, ay), ()):
-                    t = 0.0 if length == 0 else max(0.0, min(1.0, ((px - x1) * dx + (py - y1) * dy) / length))
-                    best = min(best, math.hypot(px - x1 - t * dx, py - y1 - t * dy))
+        for px, py in grid.near(cx[i], cy[i]):
+            t = 0.0 if length == 0 else max(0.0, min(1.0, ((px - x1) * dx + (py - y1) * dy) / length))
+            best = min(best, math.hypot(px - x1 - t * dx, py - y1 - t * dy))
         for k, d in enumerate(r_nm):
             counts[k] += best * dbu_nm <= d
     return counts
