@@ -97,7 +97,6 @@ OpcResult correct_mask(const FlatPolygons& layer, double dbu_nm, const OpcModel&
   // The shapes and their fragments.
   std::vector<Shape> shapes;
   std::vector<Fragment> frags;
-  const double grid = fragment / unit;  // the cuts' pitch, units
   std::vector<std::int64_t> cuts;
   check_rings(layer, "opc");
   {
@@ -143,21 +142,10 @@ OpcResult correct_mask(const FlatPolygons& layer, double dbu_nm, const OpcModel&
           const Point& b = r.pts[(e + 1) % r.pts.size()];
           const int ux = sign(b.x - a.x), uy = sign(b.y - a.y);
           f.nx = right * uy, f.ny = -right * ux;
-          // Cuts on the layer's grid of lines `grid` units apart, none within 3/4 of a pitch of
-          // an end: every inner fragment spans one cell of the grid, so that the fragments of
-          // all edges in a row share their reading line (read() below); an end fragment is 3/4
-          // to 7/4 of a pitch long (with 1/2 to 3/2 the middles of the shortest sat in the corner's
-          // rounding, and the largest error after four iterations doubled on testcase 3).
-          const std::int64_t along = ux != 0 ? a.x : a.y, to = ux != 0 ? b.x : b.y, u = ux != 0 ? ux : uy;
-          const std::int64_t c0 = std::min(along, to), c1 = std::max(along, to);
+          const std::int64_t L = std::abs(b.x - a.x) + std::abs(b.y - a.y);
+          const std::int64_t k = std::max<std::int64_t>(1, std::llround(double(L) * unit / fragment));
           cuts.clear();
-          for (std::int64_t m = std::int64_t(std::ceil((double(c0) + grid * 3 / 4) / grid)) - 1;; ++m) {
-            const std::int64_t g = std::llround(double(m) * grid);
-            if (double(g) >= double(c1) - grid * 3 / 4) break;
-            if (double(g) > double(c0) + grid * 3 / 4) cuts.push_back(u > 0 ? g - along : along - g);
-          }
-          if (u < 0) std::reverse(cuts.begin(), cuts.end());
-          cuts.push_back(std::abs(to - along));
+          for (std::int64_t j = 1; j <= k; ++j) cuts.push_back(std::llround(double(L) * double(j) / double(k)));
           std::int64_t a0 = 0;
           for (const std::int64_t a1 : cuts) {
             f.a0 = a0;
