@@ -4,7 +4,7 @@
 # 1,000 best gauges against the base rate, printed as a table.
 #   klayout -b -r bench/eval_litho.py [-rd input=FILE -rd hotspots=CSV -rd layer=L/D]
 #                                     [-rd presets=euv,iccad13] [-rd radius=NM] [-rd threads=N] [-rd near=linf|euclid]
-#                                     [-rd opc=1]
+#                                     [-rd opc=1 [-rd opc_iterations=N]]
 # Default: ../shared/data/iccad16/testcase3.oas, 1000/0, test3.csv.
 # Positives: gauges whose point lies within 32 nm (L-inf, as the issue counted) of a hotspot point. Lower scores
 # rank first (worse). The models are the fixed presets; the threshold is calibrate_threshold on
@@ -22,6 +22,8 @@
 # whose own measurement line passes near a hotspot point (those that measure it, not its
 # neighbours): what a score read on each gauge's line can rank first. -rd opc=1: each preset again,
 # read after the emulated OPC (litho.opc_mask, as -rd opc=1 reads: contexts of the drawn layer).
+# -rd opc_iterations=N: the OPC's iterations instead of the commands' (litho.OPC_ITERATIONS), to
+# see how much the figures after it depend on where it stopped.
 import csv
 import math
 import os
@@ -154,6 +156,8 @@ rows = [("geometric score", "", auc(list(table.scores()), positive), best_hits(l
          "", "")]
 
 flat = polys.flat()
+if g.get("opc_iterations"):
+    litho.OPC_ITERATIONS = int(g["opc_iterations"])
 variants = [(p, False) for p in presets] + ([(p, True) for p in presets] if g.get("opc") == "1" else [])
 for preset, after_opc in variants:
     t1 = time.perf_counter()

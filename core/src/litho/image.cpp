@@ -242,6 +242,42 @@ __attribute__((target_clones("avx2", "default"))) void dot_lanes(const double* k
   std::memcpy(si + 4, &ai1, sizeof ai1);
 }
 
+// dot_lanes for two kernels at once (k and l, the same span): each mask value is loaded once for
+// both, so a group's mask (n x n x 8 lanes, a few hundred kB) is streamed from the cache half as
+// often. Each kernel's sums are formed in the same order as dot_lanes forms them: the same bits.
+__attribute__((target_clones("avx2", "default"))) void dot_lanes2(const double* kr, const double* ki,
+                                                                   const double* lr, const double* li,
+                                                                   const double* mr, const double* mi,
+                                                                   std::size_t lo, std::size_t hi, double* sr,
+                                                                   double* si, double* tr, double* ti) {
+  Quad ar0 = {}, ar1 = {}, ai0 = {}, ai1 = {}, br0 = {}, br1 = {}, bi0 = {}, bi1 = {};
+  for (std::size_t b = lo; b < hi; ++b) {
+    Quad vr0, vr1, vi0, vi1;
+    std::memcpy(&vr0, mr + b * kLanes, sizeof vr0);
+    std::memcpy(&vr1, mr + b * kLanes + 4, sizeof vr1);
+    std::memcpy(&vi0, mi + b * kLanes, sizeof vi0);
+    std::memcpy(&vi1, mi + b * kLanes + 4, sizeof vi1);
+    const double r = kr[b], q = ki[b];
+    ar0 += r * vr0 - q * vi0;
+    ar1 += r * vr1 - q * vi1;
+    ai0 += r * vi0 + q * vr0;
+    ai1 += r * vi1 + q * vr1;
+    const double u = lr[b], v = li[b];
+    br0 += u * vr0 - v * vi0;
+    br1 += u * vr1 - v * vi1;
+    bi0 += u * vi0 + v * vr0;
+    bi1 += u * vi1 + v * vr1;
+  }
+  std::memcpy(sr, &ar0, sizeof ar0);
+  std::memcpy(sr + 4, &ar1, sizeof ar1);
+  std::memcpy(si, &ai0, sizeof ai0);
+  std::memcpy(si + 4, &ai1, sizeof ai1);
+  std::memcpy(tr, &br0, sizeof br0);
+  std::memcpy(tr + 4, &br1, sizeof br1);
+  std::memcpy(ti, &bi0, sizeof bi0);
+  std::memcpy(ti + 4, &bi1, sizeof bi1);
+}
+
 }  // namespace
 
 LineProfile::LineProfile(const LineKernels& lk, const MaskSpectrum& mask, double px, double py, double dx, double dy)
@@ -316,17 +352,27 @@ std::vector<std::vector<LineProfile>> LineProfile::batch(const std::vector<const
       std::vector<double> re(lines * count * n), im(lines * count * n);
       const double* kr = lk.re_[axis].data();
       const double* ki = lk.im_[axis].data();
-      double sr[kLanes], si[kLanes];
+      double sr[kLanes], si[kLanes], tr[kLanes], ti[kLanes];
+      auto put = [&](std::size_t g, std::size_t i, std::size_t a, const double* r, const double* q) {
+        for (std::size_t lane = 0; lane < kLanes && g * kLanes + lane < lines; ++lane) {
+          const std::size_t j = g * kLanes + lane;
+          re[(j * count + i) * n + a] = r[lane];
+          im[(j * count + i) * n + a] = q[lane];
+        }
+      };
       for (std::size_t g = 0; g < groups; ++g)
-        for (std::size_t i = 0; i < count; ++i)
+        for (std::size_t i = 0; i < count; i += 2)
           for (std::size_t a = 0; a < n; ++a) {
             const std::size_t at = (i * n + a) * n, m = (g * n + a) * n * kLanes;
-            dot_lanes(kr + at, ki + at, &mr[m], &mi[m], lk.lo_[axis][a], std::max(lk.lo_[axis][a], lk.hi_[axis][a]),
-                      sr, si);
-            for (std::size_t lane = 0; lane < kLanes && g * kLanes + lane < lines; ++lane) {
-              const std::size_t j = g * kLanes + lane;
-              re[(j * count + i) * n + a] = sr[lane];
-              im[(j * count + i) * n + a] = si[lane];
+            const std::size_t lo = lk.lo_[axis][a], hi = std::max(lk.lo_[axis][a], lk.hi_[axis][a]);
+            if (i + 1 < count) {
+              const std::size_t next = at + n * n;
+              dot_lanes2(kr + at, ki + at, kr + next, ki + next, &mr[m], &mi[m], lo, hi, sr, si, tr, ti);
+              put(g, i, a, sr, si);
+              put(g, i + 1, a, tr, ti);
+            } else {
+              dot_lanes(kr + at, ki + at, &mr[m], &mi[m], lo, hi, sr, si);
+              put(g, i, a, sr, si);
             }
           }
       std::vector<double> line_re(count * n), line_im(count * n);

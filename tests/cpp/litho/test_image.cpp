@@ -117,26 +117,34 @@ TEST(AerialImage, LineProfilesAgreeWithPoints) {
 
 // The profile formed straight from the kernels and the mask (what printability reads, without
 // the image's fields) is the image's: along both axes both ways, at half-unit points, and
-// slanted (where it images the window itself), with a mask of more frequencies than the kernels.
+// slanted (where it images the window itself), with a mask of more frequencies than the kernels;
+// with an even and an odd number of kernels (the profiles take them two at a time).
 TEST(AerialImage, ProfilesFromKernelsAndMaskAreTheImages) {
-  const MaskSpectrum mask(clip(), Window{}, P, focus().half() + 3);
-  const AerialImage im(focus(), mask);
-  struct Line {
-    double px, py, dx, dy;
-  };
-  double scale = 0;
-  for (double t = -300; t <= 300; t += 50) scale = std::max(scale, im.at(1000 + t, 1000));
-  ASSERT_GT(scale, 0.1);
-  for (const Line& l : {Line{745, 1000, 1, 0}, Line{925.5, 980.25, 0, -1}, Line{1111, 777.5, -2, 0}, Line{830, 1222, 0, 5},
-                        Line{1000, 1000, 3, 4}}) {
-    const LineProfile direct(LineKernels(focus()), mask, l.px, l.py, l.dx, l.dy), via(im, l.px, l.py, l.dx, l.dy);
-    const double len = std::hypot(l.dx, l.dy);
-    for (double t = -300; t <= 300; t += 3.7) {
-      const double want = im.at(l.px + t * l.dx / len, l.py + t * l.dy / len);
-      ASSERT_NEAR(direct.at(t), want, 1e-12 * scale) << l.px << " " << l.py << " " << t;
-      ASSERT_NEAR(via.at(t), want, 1e-12 * scale) << l.px << " " << l.py << " " << t;
+  Kernels odd = focus();
+  odd.weights.pop_back();
+  odd.values.pop_back();
+  ASSERT_EQ(odd.count() % 2, 1u);
+  for (const Kernels* kernels : {&focus(), static_cast<const Kernels*>(&odd)}) {
+    const MaskSpectrum mask(clip(), Window{}, P, kernels->half() + 3);
+    const AerialImage im(*kernels, mask);
+    struct Line {
+      double px, py, dx, dy;
+    };
+    double scale = 0;
+    for (double t = -300; t <= 300; t += 50) scale = std::max(scale, im.at(1000 + t, 1000));
+    ASSERT_GT(scale, 0.1);
+    for (const Line& l : {Line{745, 1000, 1, 0}, Line{925.5, 980.25, 0, -1}, Line{1111, 777.5, -2, 0},
+                          Line{830, 1222, 0, 5}, Line{1000, 1000, 3, 4}}) {
+      const LineProfile direct(LineKernels(*kernels), mask, l.px, l.py, l.dx, l.dy), via(im, l.px, l.py, l.dx, l.dy);
+      const double len = std::hypot(l.dx, l.dy);
+      for (double t = -300; t <= 300; t += 3.7) {
+        const double want = im.at(l.px + t * l.dx / len, l.py + t * l.dy / len);
+        ASSERT_NEAR(direct.at(t), want, 1e-12 * scale) << l.px << " " << l.py << " " << t;
+        ASSERT_NEAR(via.at(t), want, 1e-12 * scale) << l.px << " " << l.py << " " << t;
+      }
     }
   }
+  const MaskSpectrum mask(clip(), Window{}, P, focus().half() + 3);
   const LineKernels lk(focus());
   EXPECT_THROW(LineProfile(lk, mask, 0, 0, 0, 0), std::invalid_argument);
   EXPECT_THROW(LineProfile(lk, MaskSpectrum({}, Window{}, P, 10), 0, 0, 1, 0), std::invalid_argument);
