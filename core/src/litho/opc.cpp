@@ -97,7 +97,6 @@ OpcResult correct_mask(const FlatPolygons& layer, double dbu_nm, const OpcModel&
   // The shapes and their fragments.
   std::vector<Shape> shapes;
   std::vector<Fragment> frags;
-  std::vector<std::int64_t> cuts;
   check_rings(layer, "opc");
   {
     std::size_t at = 0;
@@ -135,23 +134,20 @@ OpcResult correct_mask(const FlatPolygons& layer, double dbu_nm, const OpcModel&
           area += __int128(a.x) * b.y - __int128(b.x) * a.y;
         }
         const int right = ((area > 0) != r.hole) ? 1 : -1;
-        Fragment f;
         for (std::size_t e = 0; e < r.pts.size(); ++e) {
           r.first.push_back(frags.size());
           const Point& a = r.pts[e];
           const Point& b = r.pts[(e + 1) % r.pts.size()];
           const int ux = sign(b.x - a.x), uy = sign(b.y - a.y);
-          f.nx = right * uy, f.ny = -right * ux;
           const std::int64_t L = std::abs(b.x - a.x) + std::abs(b.y - a.y);
           const std::int64_t k = std::max<std::int64_t>(1, std::llround(double(L) * unit / fragment));
-          cuts.clear();
-          for (std::int64_t j = 1; j <= k; ++j) cuts.push_back(std::llround(double(L) * double(j) / double(k)));
-          std::int64_t a0 = 0;
-          for (const std::int64_t a1 : cuts) {
-            f.a0 = a0;
-            f.cx2 = 2 * a.x + (a0 + a1) * ux, f.cy2 = 2 * a.y + (a0 + a1) * uy;
+          for (std::int64_t j = 0; j < k; ++j) {
+            Fragment f;
+            f.a0 = std::int64_t(std::llround(double(L) * double(j) / double(k)));
+            const std::int64_t a1 = std::int64_t(std::llround(double(L) * double(j + 1) / double(k)));
+            f.cx2 = 2 * a.x + (f.a0 + a1) * ux, f.cy2 = 2 * a.y + (f.a0 + a1) * uy;
+            f.nx = right * uy, f.ny = -right * ux;
             frags.push_back(f);
-            a0 = a1;
           }
         }
         r.first.push_back(frags.size());
@@ -266,9 +262,10 @@ OpcResult correct_mask(const FlatPolygons& layer, double dbu_nm, const OpcModel&
       }
       const MaskSpectrum mask(polys, Window{{ox, oy}, half_unit}, P, kernels.half());
       // One line a row: fragments of vertical edges are read along x through their middle's y,
-      // those of horizontal edges along y, and all in a tile on one line share its profile
-      // (the grid's cuts line most of them up). A line runs through the window's centre, in +x
-      // or +y; a fragment reads it at its middle, towards its outward normal.
+      // those of horizontal edges along y, and all in a tile on one line share its profile (the
+      // two edges of a wire are cut alike, line ends sit on one track: testcase 3's fragments
+      // take 0.55 lines each). A line runs through the window's centre, in +x or +y; a fragment
+      // reads it at its middle, towards its outward normal.
       const std::vector<std::size_t>& mine = tile_frags[k];
       std::vector<std::pair<std::int64_t, std::size_t>> rows;  // (2 coordinate + axis, fragment)
       rows.reserve(mine.size());

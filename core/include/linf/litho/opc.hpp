@@ -45,13 +45,11 @@ struct OpcResult {
 };
 
 // Rules (docs/design.md, "OPC before the reading"):
-// - Fragments about the model's resolution long: an axis-parallel edge is cut where it crosses
-//   the lines x = m r or y = m r (m integer, rounded to the quarter DBU) at least 3/4 r from both
-//   its ends, r = the period / the kernels' half size, about lambda / (NA (1 + sigma_out)) for a
-//   preset (22.3 nm for euv). Inner fragments are r long, end ones 3/4 r to 7/4 r, an edge
-//   shorter than 3/2 r one fragment.
-// - Fragments on one line across a tile (their middles in one row or column) are read on one
-//   profile of the image: the grid lines most of them up.
+// - Fragments about the model's resolution long: an axis-parallel edge of length L is cut into
+//   max(1, round(L / r)) of equal length (ends on the quarter-DBU grid), r = the period / the
+//   kernels' half size, about lambda / (NA (1 + sigma_out)) for a preset (22.3 nm for euv).
+// - Fragments of a tile whose reading lines coincide (the two edges of a wire are cut alike, line
+//   ends sit on one track) are read on one profile of the image.
 // - A fragment's error is read on the image along its outward normal through its middle, blurred
 //   by the resist: e = (I - t) / -dI/dn (the printed edge lies e beyond the drawn one);
 //   +-width / 10 where the image has no falling edge there; never more than the width.
