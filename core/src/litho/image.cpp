@@ -213,43 +213,20 @@ namespace {
 // Lines are profiled kLanes at a time: the sums below run over them side by side.
 constexpr std::size_t kLanes = 8;
 
-// s_j = sum over b in [lo, hi) of k[b] m_j[b] for kLanes lines j, complex in parts, m_j[b] at
-// m[b * kLanes + j]: one kernel value serves all the lines from a register, the partial sums
-// stay in registers, and each line's sum is taken in the order of b, whatever the clone
-// (products and sums apart, never fused, so the same bits from every clone).
+// s_j = sum over b in [lo, hi) of k[b] m_j[b] and t_j = sum of l[b] m_j[b], for two kernels k
+// and l of the same span and kLanes lines j, complex in parts, m_j[b] at m[b * kLanes + j]: each
+// mask value is loaded once for both kernels, one kernel value serves all the lines from a
+// register, the partial sums stay in registers, and each line's sum is taken in the order of b,
+// whatever the clone (products and sums apart, never fused, so the same bits from every clone;
+// a kernel's sums do not depend on the other kernel of its pair).
 using Quad = double __attribute__((vector_size(4 * sizeof(double))));
 
-__attribute__((target_clones("avx2", "default"))) void dot_lanes(const double* kr, const double* ki,
-                                                                  const double* mr, const double* mi, std::size_t lo,
-                                                                  std::size_t hi, double* sr, double* si) {
-  static_assert(kLanes == 8, "two quads of lanes");
-  Quad ar0 = {}, ar1 = {}, ai0 = {}, ai1 = {};
-  for (std::size_t b = lo; b < hi; ++b) {
-    const double r = kr[b], q = ki[b];
-    Quad vr0, vr1, vi0, vi1;
-    std::memcpy(&vr0, mr + b * kLanes, sizeof vr0);
-    std::memcpy(&vr1, mr + b * kLanes + 4, sizeof vr1);
-    std::memcpy(&vi0, mi + b * kLanes, sizeof vi0);
-    std::memcpy(&vi1, mi + b * kLanes + 4, sizeof vi1);
-    ar0 += r * vr0 - q * vi0;
-    ar1 += r * vr1 - q * vi1;
-    ai0 += r * vi0 + q * vr0;
-    ai1 += r * vi1 + q * vr1;
-  }
-  std::memcpy(sr, &ar0, sizeof ar0);
-  std::memcpy(sr + 4, &ar1, sizeof ar1);
-  std::memcpy(si, &ai0, sizeof ai0);
-  std::memcpy(si + 4, &ai1, sizeof ai1);
-}
-
-// dot_lanes for two kernels at once (k and l, the same span): each mask value is loaded once for
-// both, so a group's mask (n x n x 8 lanes, a few hundred kB) is streamed from the cache half as
-// often. Each kernel's sums are formed in the same order as dot_lanes forms them: the same bits.
 __attribute__((target_clones("avx2", "default"))) void dot_lanes2(const double* kr, const double* ki,
                                                                    const double* lr, const double* li,
                                                                    const double* mr, const double* mi,
                                                                    std::size_t lo, std::size_t hi, double* sr,
                                                                    double* si, double* tr, double* ti) {
+  static_assert(kLanes == 8, "two quads of lanes");
   Quad ar0 = {}, ar1 = {}, ai0 = {}, ai1 = {}, br0 = {}, br1 = {}, bi0 = {}, bi1 = {};
   for (std::size_t b = lo; b < hi; ++b) {
     Quad vr0, vr1, vi0, vi1;
@@ -365,15 +342,11 @@ std::vector<std::vector<LineProfile>> LineProfile::batch(const std::vector<const
           for (std::size_t a = 0; a < n; ++a) {
             const std::size_t at = (i * n + a) * n, m = (g * n + a) * n * kLanes;
             const std::size_t lo = lk.lo_[axis][a], hi = std::max(lk.lo_[axis][a], lk.hi_[axis][a]);
-            if (i + 1 < count) {
-              const std::size_t next = at + n * n;
-              dot_lanes2(kr + at, ki + at, kr + next, ki + next, &mr[m], &mi[m], lo, hi, sr, si, tr, ti);
-              put(g, i, a, sr, si);
-              put(g, i + 1, a, tr, ti);
-            } else {
-              dot_lanes(kr + at, ki + at, &mr[m], &mi[m], lo, hi, sr, si);
-              put(g, i, a, sr, si);
-            }
+            // An odd count's last kernel is paired with itself.
+            const std::size_t next = i + 1 < count ? at + n * n : at;
+            dot_lanes2(kr + at, ki + at, kr + next, ki + next, &mr[m], &mi[m], lo, hi, sr, si, tr, ti);
+            put(g, i, a, sr, si);
+            if (i + 1 < count) put(g, i + 1, a, tr, ti);
           }
       std::vector<double> line_re(count * n), line_im(count * n);
       for (std::size_t j = 0; j < lines; ++j) {
