@@ -68,6 +68,13 @@ def build(polys, out, tiles=None):
     return r, time.perf_counter() - t0
 
 
+def cpu_seconds():
+    """This process's user + system CPU time (on a worker or the scheduler through client.run)."""
+    import resource
+    u = resource.getrusage(resource.RUSAGE_SELF)
+    return u.ru_utime + u.ru_stime
+
+
 def same(a, b, name):
     with open(os.path.join(a, name), "rb") as f, open(os.path.join(b, name), "rb") as g:
         return f.read() == g.read()
@@ -153,7 +160,9 @@ try:
     local_dir, dask_dir = os.path.join(work, "local"), os.path.join(work, "dask")
     os.makedirs(local_dir)
     os.makedirs(dask_dir)
+    c0 = cpu_seconds()
     r_local, t_local = build(polys, local_dir)
+    cpu_local = cpu_seconds() - c0
     print("local, one thread: %.2f s (diagram build %.2f s)" % (t_local, r_local["diagram"]["seconds"]["build"]),
           file=sys.stderr)
 
@@ -180,8 +189,12 @@ try:
     round_trip = (time.perf_counter() - t0) / 200
 
     tiles = Measured(cluster.Tiles(client))
+    # CPU time of every process of the cluster's run: on two shared cores the wall times above
+    # include waiting for a core, the CPU times do not.
+    c0, w0, s0 = cpu_seconds(), client.run(cpu_seconds), client.run_on_scheduler(cpu_seconds)
     with get_task_stream(client) as ts:
         r_dask, t_dask = build(polys, dask_dir, tiles)
+    c1, w1, s1 = cpu_seconds(), client.run(cpu_seconds), client.run_on_scheduler(cpu_seconds)
     spans = [(s["stop"] - s["start"]) for t in ts.data if t["key"].startswith("linf-tile")
              for s in t["startstops"] if s["action"] == "compute"]
     peak = client.run(lambda: __import__("resource").getrusage(__import__("resource").RUSAGE_SELF).ru_maxrss)
@@ -206,6 +219,8 @@ try:
         "bytes_sent": tiles.sent, "bytes_received": tiles.received, "largest_job_bytes": tiles.largest_job,
         "overhead_per_task_batch_ms": 1000 * per_task_batch, "round_trip_ms": 1000 * round_trip,
         "worker_peak_rss_mb": sorted(v / 1024 for v in peak.values()),
+        "cpu_local_s": cpu_local, "cpu_host_s": c1 - c0, "cpu_workers_s": sorted(w1[k] - w0[k] for k in w1),
+        "cpu_scheduler_s": s1 - s0,
         "machine": "%s, %d cores, Python %s" % (platform.processor() or platform.machine(), os.cpu_count(),
                                                   platform.python_version()),
         "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
@@ -226,6 +241,9 @@ try:
              result["host_after_tiles_s"], tiles.sent / 1e6, tiles.received / 1e6,
              result["overhead_per_task_batch_ms"], result["round_trip_ms"],
              ", ".join("%.0f" % v for v in result["worker_peak_rss_mb"])))
+    print("CPU time: local run %.2f s; cluster run: host %.2f s, workers %s s, scheduler %.2f s"
+          % (cpu_local, result["cpu_host_s"], " + ".join("%.2f" % v for v in result["cpu_workers_s"]),
+             result["cpu_scheduler_s"]))
     pr = result["projection"]
     print("projection to %.0e wires (%d tiles): one thread %.0f s; 64 workers %.0f s; 256 workers %.0f s; host serial "
           "%.0f s, host per-tile work %.0f s, scheduler %.0f s, network %.0f s"

@@ -7,9 +7,33 @@ come back, never the core's exception objects: the submitting host re-raises the
 (the same classes and messages as a local run)."""
 
 
+# glibc's mmap and trim thresholds as its dynamic rule leaves them at most (64-bit): large
+# arrays come from the heap again after they are freed, and up to 64 MB of freed heap is kept.
+M_TRIM_THRESHOLD, M_MMAP_THRESHOLD = -1, -3
+MMAP_THRESHOLD = 32 << 20
+TRIM_THRESHOLD = 2 * MMAP_THRESHOLD
+
+
+def reuse_freed_memory():
+    """Undo the Dask nanny's MALLOC_TRIM_THRESHOLD_=65536 for this worker process. Setting any
+    threshold switches glibc's dynamic mmap threshold off, so it stays at 128 KB: every large
+    array of every tile is then mapped afresh and its pages faulted in and zeroed, which doubled
+    a tile's build (design.md, "Tiles elsewhere"). A tile's memory is bounded, and the next tile
+    reuses what this one freed. Elsewhere than glibc, nothing to do."""
+    import ctypes
+    import ctypes.util
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
+        libc.mallopt(M_MMAP_THRESHOLD, MMAP_THRESHOLD)
+        libc.mallopt(M_TRIM_THRESHOLD, TRIM_THRESHOLD)
+    except (OSError, AttributeError):
+        pass
+
+
 def build_tile(job, threads):
     """('ok', result bytes), ('missing', host, why) or ('error', class name, message)."""
     import socket
+    reuse_freed_memory()
     try:
         import linf_opc_core as core
     except ImportError as first:
