@@ -21,9 +21,8 @@ def reuse_freed_memory():
     a tile's build (design.md, "Tiles elsewhere"). A tile's memory is bounded, and the next tile
     reuses what this one freed. Elsewhere than glibc, nothing to do."""
     import ctypes
-    import ctypes.util
     try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
+        libc = ctypes.CDLL(None)  # the process's own symbols: no library search on every task
         libc.mallopt(M_MMAP_THRESHOLD, MMAP_THRESHOLD)
         libc.mallopt(M_TRIM_THRESHOLD, TRIM_THRESHOLD)
     except (OSError, AttributeError):
