@@ -238,18 +238,11 @@ try:
         # same class with the same message (a DiagramError exits 3 with the local run's line).
         from linf_opc import cluster as dask_runner, core
 
-        class Answer:
-            def __init__(self, value):
-                self.value = value
-
-            def result(self):
-                return self.value
-
         tiles = dask_runner.Tiles.__new__(dask_runner.Tiles)
         tiles.address = "tcp://test:1"
         for name, cls in (("DiagramError", core.DiagramError), ("ValueError", ValueError)):
             try:
-                tiles._result(Answer(("error", name, "the worker's message")), 0)
+                tiles._answer(("error", name, "the worker's message"))
                 expect(False, "a worker's %s is raised here" % name)
             except Exception as e:  # noqa: BLE001
                 expect(type(e) is cls and str(e) == "the worker's message",

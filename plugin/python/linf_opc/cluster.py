@@ -103,10 +103,16 @@ class Tiles:
 
     def _result(self, future, k):
         try:
-            answer = future.result()
+            # Straight from the worker that holds it: through the scheduler (Dask's default for
+            # a client outside the cluster), every tile's pieces were copied by its one process.
+            answer = self.client.gather(future, direct=True)
         except Exception as e:  # noqa: BLE001 - KilledWorker (lost too often), a task that cannot run
             raise ClusterError("tile %d failed on the Dask cluster at %s: %s: %s"
                                % (k, self.address, type(e).__name__, str(e).splitlines()[0] if str(e) else ""))
+        return self._answer(answer)
+
+    def _answer(self, answer):
+        """cluster_task.build_tile's answer: the result bytes, or its error raised here."""
         if answer[0] == "ok":
             return answer[1]
         if answer[0] == "missing":
