@@ -114,6 +114,33 @@ void bind_litho(py::module_& m) {
       "image crosses `level` (docs/design.md, 'The report's pictures').");
 
   m.def(
+      "litho_layer_parts",
+      [](const py::object& polys, double dbu_nm, double period, const py::buffer& cx, const py::buffer& cy,
+         const py::buffer& starts) {
+        const LayerInput in(polys);
+        const auto ccx = column_of<double>(cx, "cx"), ccy = column_of<double>(cy, "cy");
+        const auto cs = column_of<std::int64_t>(starts, "starts");
+        std::vector<std::size_t> at;
+        for (std::size_t k = 0; k < cs.size(); ++k) {
+          if (cs[k] < 0) throw std::invalid_argument("the chunks' starts must ascend within the points");
+          at.push_back(std::size_t(cs[k]));
+        }
+        std::vector<litho::LayerPart> parts;
+        {
+          py::gil_scoped_release unlocked;
+          parts = litho::window_shapes(in.flat(), dbu_nm, period, strided(ccx), strided(ccy), at);
+        }
+        py::list out;
+        for (const litho::LayerPart& p : parts) out.append(py::make_tuple(bytes_of(p.points), bytes_of(p.rings)));
+        return out;
+      },
+      py::arg("polygons"), py::arg("dbu"), py::arg("period"), py::arg("cx"), py::arg("cy"), py::arg("starts"),
+      "The parts of the merged layer that gauge_printability clips for chunks of gauge points: for each chunk\n"
+      "(cx, cy)[starts[c]:starts[c + 1]] (float64 DBU; starts: int64, ascending) with kernels of `period` nm, dbu\n"
+      "in nm, (points, rings) as bytes of int64: the polygons (with their holes) meeting some point's window, in\n"
+      "the layer's order. gauge_printability reads a chunk's gauges on its part exactly as on the layer.");
+
+  m.def(
       "calibrate_threshold",
       [](const litho::Kernels& k, double width, double pitch, double blur) {
         const litho::Calibration c = litho::calibrate_threshold(k, width, pitch, blur);

@@ -14,6 +14,8 @@
 # faults=1: an unreachable scheduler gives one error line, exit 2, within 10 s and nothing
 # written; a worker without the core module gives an error naming it.
 # plain=1: gauges and flow also from plain Python (python3 macros/linf_opc.py), the same files.
+# litho=NAME [opc=1]: gauges and flow with -rd litho=NAME (and the OPC) give the local run's files,
+# the printability read on the workers.
 # editor=1: the editor's path (the core in its worker process, which connects to the cluster)
 # writes the same voronoi.csv; an unreachable scheduler is a UsageError there.
 # Every process started here is stopped (finally).
@@ -150,6 +152,27 @@ try:
             ok(r, cmd + " on the cluster from plain Python")
             same_files(ref, plain, cmd + " on the cluster from plain Python")
 
+    if arg("litho", "") != "":
+        # The gauges' printability read on the workers in chunks, each with the part of the
+        # layer its windows see (cluster.Tiles.printability): the same files. One tile, so
+        # that only the chunks are on the cluster.
+        for cmd in ("gauges", "flow"):
+            ref, got = os.path.join(work, cmd + "_litho_local"), os.path.join(work, cmd + "_litho_dask")
+            extra = ["-rd", "litho=" + arg("litho")] + (["-rd", "opc=1"] if arg("opc", "0") == "1" else [])
+            ok(run(cmd, ref, extra), cmd + " with litho locally")
+            t0 = time.time()
+            ok(run(cmd, got, extra + ["-rd", "scheduler=" + address]), cmd + " with litho on the cluster")
+            print("%s with litho=%s on the cluster: %.1f s" % (cmd, arg("litho"), time.time() - t0))
+            with open(os.path.join(got, "summary.json")) as f:
+                summary = json.load(f)
+            lit = summary["litho"] if cmd == "gauges" else summary["gauges"]["litho"]
+            expect(lit["simulated"] > 0, "%s: gauges were simulated (%s)" % (cmd, lit))
+            same_files(ref, got, cmd + " with litho on the cluster")
+        import distributed
+        with distributed.Client(address, timeout=30, set_as_default=False) as c:
+            prefixes = c.run_on_scheduler(lambda dask_scheduler: sorted(dask_scheduler.task_prefixes))
+        expect("linf-litho" in prefixes, "the printability's chunks ran as tasks (the scheduler saw %s)" % prefixes)
+
     if arg("editor", "0") == "1":
         # The editor's path: the core call in its watched worker process (worker.py), which
         # connects to the cluster itself (core.tiles_at); the same voronoi.csv as in this process.
@@ -169,6 +192,22 @@ try:
         with open(local_csv, "rb") as f, open(editor_csv, "rb") as g:
             expect(f.read() == g.read(), "the editor's worker process on the cluster writes the same voronoi.csv")
         expect(r["tiles"]["tiles"] > 1, "the editor's run has several tiles (%s)" % r["tiles"])
+        # The printability from the editor's worker process: read in chunks on the cluster, the
+        # same columns as in this process: the spaces between the rows of wires.
+        kernels = core.litho_kernels("euv")
+        pts_x = array.array("d", (700.0 * i + 225 for i in range(12) for k in range(40)))
+        pts_y = array.array("d", (100.0 * k + 75 for i in range(12) for k in range(40)))
+        line = [array.array("d", (v + d for v in c)) for c, d in ((pts_x, 0), (pts_y, -25), (pts_x, 0), (pts_y, 25))]
+        kinds, cds = array.array("i", [1]) * len(pts_x), array.array("d", [50.0]) * len(pts_x)
+        how = dict(threads=1, dose=0.02, blur=5.0)
+        t = core.calibrate_threshold(kernels, 50, 100, 5.0)["threshold"]
+        here = core.gauge_printability(polys, 1.0, pts_x, pts_y, *line, kinds, cds, kernels, t, **how)
+        with core.running_with(worker.Runner()), core.tiles_at(address):
+            there = core.gauge_printability(polys, 1.0, pts_x, pts_y, *line, kinds, cds, kernels, t, **how)
+        measured = sum(v == v for v in array.array("d", here["printed_cd"]))
+        expect(measured > 0, "the editor's printability points measure something (%d of %d)" % (measured, len(pts_x)))
+        expect(all(here[k] == there[k] for k in ("printed_cd", "fails", "fails_nominal", "pv_band", "score", "images")),
+               "the editor's worker process reads the printability on the cluster as this process does")
         try:
             with core.running_with(worker.Runner()), core.tiles_at("tcp://127.0.0.1:%d" % free_port()):
                 core.voronoi_polygons(polys, threads=1, tile=1000, pieces=False)

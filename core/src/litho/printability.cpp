@@ -61,19 +61,9 @@ class Layer {
   // coordinates, so that a window centred on a gauge point at a half DBU is exactly centred),
   // clipped to it, in half DBU.
   std::vector<Polygon> clip(std::int64_t x0, std::int64_t y0, std::int64_t w) const {
-    std::vector<std::size_t> ids;
-    const std::int64_t lx = floor_half(x0), ly = floor_half(y0), hx = floor_half(x0 + w) + 1, hy = floor_half(y0 + w) + 1;
-    for (std::int64_t gx = floor_div(lx); gx <= floor_div(hx); ++gx)
-      for (std::int64_t gy = floor_div(ly); gy <= floor_div(hy); ++gy) {
-        const auto it = buckets_.find(key(gx, gy));
-        if (it != buckets_.end()) ids.insert(ids.end(), it->second.begin(), it->second.end());
-      }
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
     std::vector<Polygon> out;
-    for (std::size_t i : ids) {
+    for (std::size_t i : meeting(x0, y0, w)) {
       const Poly& p = polys_[i];
-      if (2 * p.box[0] > x0 + w || 2 * p.box[2] < x0 || 2 * p.box[1] > y0 + w || 2 * p.box[3] < y0) continue;
       Polygon q;
       std::size_t at = p.first_point;
       for (std::size_t r = 0; r < p.rings; ++r) {
@@ -93,6 +83,39 @@ class Layer {
     return out;
   }
 
+  // The polygons (their numbers, ascending) whose boxes meet that box: those clip() clips.
+  std::vector<std::size_t> meeting(std::int64_t x0, std::int64_t y0, std::int64_t w) const {
+    std::vector<std::size_t> ids;
+    const std::int64_t lx = floor_half(x0), ly = floor_half(y0), hx = floor_half(x0 + w) + 1, hy = floor_half(y0 + w) + 1;
+    for (std::int64_t gx = floor_div(lx); gx <= floor_div(hx); ++gx)
+      for (std::int64_t gy = floor_div(ly); gy <= floor_div(hy); ++gy) {
+        const auto it = buckets_.find(key(gx, gy));
+        if (it != buckets_.end()) ids.insert(ids.end(), it->second.begin(), it->second.end());
+      }
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    ids.erase(std::remove_if(ids.begin(), ids.end(), [&](std::size_t i) {
+      const Poly& p = polys_[i];
+      return 2 * p.box[0] > x0 + w || 2 * p.box[2] < x0 || 2 * p.box[1] > y0 + w || 2 * p.box[3] < y0;
+    }), ids.end());
+    return ids;
+  }
+
+  // Polygon i's rings and points, appended to flat arrays as FlatPolygons views them.
+  void append(std::size_t i, std::vector<std::int64_t>& points, std::vector<std::int64_t>& rings) const {
+    const Poly& p = polys_[i];
+    std::size_t at = p.first_point;
+    for (std::size_t r = 0; r < p.rings; ++r) {
+      const std::int64_t c = in_.rings[p.first_ring + r];
+      const std::size_t n = std::size_t(c < 0 ? -c : c);
+      rings.push_back(c);
+      points.insert(points.end(), in_.points + 2 * at, in_.points + 2 * (at + n));
+      at += n;
+    }
+  }
+
+  std::size_t size() const { return polys_.size(); }
+
  private:
   struct Poly {
     std::size_t first_ring, rings, first_point;
@@ -111,7 +134,39 @@ class Layer {
   std::unordered_map<std::uint64_t, std::vector<std::size_t>> buckets_;
 };
 
+// The window in half DBU, an even number of them inside the period (the mask refuses points
+// beyond it), centred exactly on the gauge point (a gauge point lies on the half-DBU grid).
+std::int64_t window_side(double period, double dbu_nm) {
+  if (!(dbu_nm > 0)) fail("the database unit must be positive");
+  std::int64_t W = std::int64_t(std::floor(period / (dbu_nm / 2) + 1e-9));
+  W -= W % 2;
+  if (W < 4) fail("the model's period is below two database units");
+  return W;
+}
+
+std::int64_t window_origin(double c, std::int64_t W) { return std::int64_t(std::llround(2 * c)) - W / 2; }
+
 }  // namespace
+
+std::vector<LayerPart> window_shapes(const FlatPolygons& layer, double dbu_nm, double period, const Strided<double>& cx,
+                                     const Strided<double>& cy, const std::vector<std::size_t>& starts) {
+  if (cx.size() != cy.size()) fail("the gauge points' x and y have different lengths");
+  for (std::size_t k = 0; k < starts.size(); ++k)
+    if (starts[k] > cx.size() || (k > 0 && starts[k] < starts[k - 1])) fail("the chunks' starts must ascend within the points");
+  const std::int64_t W = window_side(period, dbu_nm);
+  const Layer shapes(layer, std::max<std::int64_t>(W / 2, 1));
+  std::vector<LayerPart> parts;
+  std::vector<char> in(shapes.size(), 0);
+  for (std::size_t c = 0; c + 1 < starts.size(); ++c) {
+    std::fill(in.begin(), in.end(), 0);
+    for (std::size_t k = starts[c]; k < starts[c + 1]; ++k)
+      for (std::size_t i : shapes.meeting(window_origin(cx[k], W), window_origin(cy[k], W), W)) in[i] = 1;
+    LayerPart& part = parts.emplace_back();
+    for (std::size_t i = 0; i < in.size(); ++i)
+      if (in[i]) shapes.append(i, part.points, part.rings);
+  }
+  return parts;
+}
 
 Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeColumns& g, const PrintModel& model,
                           int threads) {
@@ -129,13 +184,9 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
     if (m != n) fail("the gauge columns have different lengths");
   if (g.context.size() != 0 && g.context.size() != n) fail("the context ids are not one a gauge");
   const double P = kernels.period;
-  // The window in half DBU, an even number of them inside the period (the mask refuses points
-  // beyond it), centred exactly on the gauge point (a gauge point lies on the half-DBU grid).
   const double half_dbu = dbu_nm / 2;
-  std::int64_t W = std::int64_t(std::floor(P / half_dbu + 1e-9));
-  W -= W % 2;
-  if (W < 4) fail("the model's period is below two database units");
-  auto origin = [&](double c) { return std::int64_t(std::llround(2 * c)) - W / 2; };
+  const std::int64_t W = window_side(P, dbu_nm);
+  auto origin = [&](double c) { return window_origin(c, W); };
   for (std::size_t i = 0; i < n; ++i) {
     const double cx = g.cx[i], cy = g.cy[i];
     const std::int64_t ox = origin(cx), oy = origin(cy);
@@ -326,13 +377,11 @@ std::vector<std::vector<double>> window_images(const FlatPolygons& layer, double
   if (!(blur >= 0) || !std::isfinite(blur)) fail("the resist blur must be a number >= 0");
   if (cx.size() != cy.size()) fail("the centres' x and y have different lengths");
   const double P = kernels.period, half_dbu = dbu_nm / 2;
-  std::int64_t W = std::int64_t(std::floor(P / half_dbu + 1e-9));
-  W -= W % 2;
-  if (W < 4) fail("the model's period is below two database units");
+  const std::int64_t W = window_side(P, dbu_nm);
   const Layer shapes(layer, std::max<std::int64_t>(W / 2, 1));
   std::vector<std::vector<double>> out(cx.size());
   for (std::size_t k = 0; k < cx.size(); ++k) {
-    const std::int64_t ox = std::int64_t(std::llround(2 * cx[k])) - W / 2, oy = std::int64_t(std::llround(2 * cy[k])) - W / 2;
+    const std::int64_t ox = window_origin(cx[k], W), oy = window_origin(cy[k], W);
     const AerialImage image(kernels, MaskSpectrum(shapes.clip(ox, oy, W), Window{{ox, oy}, half_dbu}, P, kernels.half()));
     out[k] = image.grid(m, threads);
     blur_grid(out[k], m, P, blur);

@@ -10,6 +10,7 @@ later stage run here. A lost worker's tasks are rerun by Dask on the others. Err
 meet are ClusterError (one line, exit code 2, as a UsageError), raised before anything is written
 when the scheduler cannot be reached."""
 import collections
+from array import array
 import contextlib
 import logging
 import re
@@ -101,18 +102,18 @@ class Tiles:
         workers = self.client.scheduler_info().get("workers", {})
         return max(1, sum(w.get("nthreads", 1) for w in workers.values()))
 
-    def _result(self, future, k):
+    def _gathered(self, future, what):
         try:
             # Straight from the worker that holds it: through the scheduler (Dask's default for
             # a client outside the cluster), every tile's pieces were copied by its one process.
-            answer = self.client.gather(future, direct=True)
+            return self.client.gather(future, direct=True)
         except Exception as e:  # noqa: BLE001 - KilledWorker (lost too often), a task that cannot run
-            raise ClusterError("tile %d failed on the Dask cluster at %s: %s: %s"
-                               % (k, self.address, type(e).__name__, str(e).splitlines()[0] if str(e) else ""))
-        return self._answer(answer)
+            raise ClusterError("%s failed on the Dask cluster at %s: %s: %s"
+                               % (what, self.address, type(e).__name__, str(e).splitlines()[0] if str(e) else ""))
 
-    def _answer(self, answer):
-        """cluster_task.build_tile's answer: the result bytes, or its error raised here."""
+    def _answer(self, answer, rows=None):
+        """A task's answer (cluster_task): its result, or its error raised here. rows: the
+        chunk's gauge numbers, so that a gauge the core names is named as locally."""
         if answer[0] == "ok":
             return answer[1]
         if answer[0] == "missing":
@@ -120,6 +121,8 @@ class Tiles:
                                "build's linf_opc_core*.so (the build/ folder, or the installed package's linf_opc "
                                "folder) on the workers' PYTHONPATH and restart them" % (answer[1], answer[2]))
         name, message = answer[1], answer[2]
+        if rows is not None:
+            message = re.sub(r"\bgauge (\d+) ", lambda m: "gauge %d " % rows[int(m.group(1))], message, count=1)
         if name == "DiagramError":
             raise core.DiagramError(message)
         if name == "ValueError":
@@ -151,12 +154,83 @@ class Tiles:
                 if not pending:
                     return
                 k, future = pending.popleft()
-                result = self._result(future, k)
+                result = self._answer(self._gathered(future, "tile %d" % k))
                 future.release()
                 done(result)
         finally:
             for _, future in pending:
                 future.cancel()
+
+
+    def printability(self, polygons, dbu, cx, cy, x1, y1, x2, y2, types, cd, kernels, threshold, contexts=None,
+                     threads=0, defocus=None, dose=0.0, blur=0.0):
+        """core.gauge_printability with its windows read on the workers: the same dict, the same
+        bytes. The gauges that simulate (the first of each type and context, as the core picks
+        them) go out in chunks, each with the part of the layer its windows see
+        (core.litho_layer_parts); the others take their source's reading here."""
+        import time
+        t0 = time.perf_counter()
+        n = len(cx)
+        cols = [array("d", c) for c in (cx, cy, x1, y1, x2, y2, cd)]
+        kinds = array("i", types)
+        source = array("q", range(n))
+        if contexts is not None:
+            first = {}
+            for i, key in enumerate(zip(kinds, contexts)):
+                source[i] = first.setdefault(key, i)
+        reps = [i for i in range(n) if source[i] == i]
+        # Chunks of nearby points, so that a chunk's part of the layer is small; gauges on one
+        # point (one line: one image, counted once) stay in one chunk.
+        band = 64 * max(1.0, kernels.period / dbu)
+        reps.sort(key=lambda i: (cols[1][i] // band, cols[0][i], cols[1][i], i))
+        size = max(256, min(8192, -(-len(reps) // (4 * self._slots()))))
+        chunks, at = [], 0
+        while at < len(reps):
+            end = min(at + size, len(reps))
+            while end < len(reps) and (cols[0][reps[end]], cols[1][reps[end]]) == (cols[0][reps[end - 1]],
+                                                                                  cols[1][reps[end - 1]]):
+                end += 1
+            chunks.append(sorted(reps[at:end]))
+            at = end
+        starts = array("q", [0])
+        for c in chunks:
+            starts.append(starts[-1] + len(c))
+        flat = [i for c in chunks for i in c]
+        px, py = array("d", (cols[0][i] for i in flat)), array("d", (cols[1][i] for i in flat))
+        parts = core.litho_layer_parts(polygons, dbu, kernels.period, px, py, starts) if flat else []
+        states = kernels.__getstate__(), None if defocus is None else defocus.__getstate__()
+        run = uuid.uuid4().hex[:12]
+        futures = []
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # a chunk's part of the layer, as a tile's job
+            for k, (c, (points, rings)) in enumerate(zip(chunks, parts)):
+                part = (array("q", points), array("q", rings))
+                columns = tuple(array("d", (col[i] for i in c)) for col in cols) + (array("i", (kinds[i] for i in c)),)
+                futures.append(self.client.submit(cluster_task.read_gauges, part, columns, states[0], states[1],
+                                                  threshold, dose, blur, dbu, self.threads,
+                                                  key="linf-litho-%s-%d" % (run, k), pure=False))
+        printed, band_, score = array("d", [float("nan")]) * n, array("d", [float("nan")]) * n, array("d", [float("nan")]) * n
+        fails, nominal = bytearray(n), bytearray(n)
+        images = 0
+        try:
+            for k, (c, future) in enumerate(zip(chunks, futures)):
+                r = self._answer(self._gathered(future, "the printability of chunk %d" % k), c)
+                images += r["images"]
+                got = [array("d", r[name]) for name in ("printed_cd", "pv_band", "score")]
+                for j, i in enumerate(c):
+                    printed[i], band_[i], score[i] = got[0][j], got[1][j], got[2][j]
+                    fails[i], nominal[i] = r["fails"][j], r["fails_nominal"][j]
+                future.release()
+        finally:
+            for f in futures:
+                f.cancel()
+        for i in range(n):
+            j = source[i]
+            if j != i:
+                printed[i], band_[i], score[i], fails[i], nominal[i] = printed[j], band_[j], score[j], fails[j], nominal[j]
+        return {"printed_cd": printed.tobytes(), "fails": bytes(fails), "fails_nominal": bytes(nominal),
+                "pv_band": band_.tobytes(), "score": score.tobytes(), "simulations": len(reps), "shared": n - len(reps),
+                "images": images, "seconds": time.perf_counter() - t0}
 
 
 _client = None

@@ -44,3 +44,37 @@ def build_tile(job, threads):
         return ("ok", core.build_tile_job(job, threads))
     except Exception as e:  # noqa: BLE001 - handed back whole, re-raised on the submitting host
         return ("error", type(e).__name__, str(e))
+
+
+def _core():
+    try:
+        import linf_opc_core as core
+    except ImportError:
+        from linf_opc import linf_opc_core as core  # the installed KLayout package
+    return core
+
+
+def read_gauges(part, columns, kernels, defocus, threshold, dose, blur, dbu, threads):
+    """One chunk of the gauges' printability: core.gauge_printability on the part of the layer
+    the chunk's windows see. columns: (cx, cy, x1, y1, x2, y2, cd) arrays('d') and types
+    array('i'); kernels, defocus: LithoKernels states (plain tuples, so that a worker needs only
+    the core, whatever module path the host's kernels were pickled under). Answers as
+    build_tile: ('ok', the core's dict), ('missing', host, why) or ('error', class, message)."""
+    import socket
+    try:
+        core = _core()
+    except ImportError as e:
+        return ("missing", socket.gethostname(), str(e))
+    try:
+        def made(state):
+            if state is None:
+                return None
+            k = core.LithoKernels.__new__(core.LithoKernels)
+            k.__setstate__(state)
+            return k
+        cx, cy, x1, y1, x2, y2, cd, types = columns
+        r = core.gauge_printability(part, dbu, cx, cy, x1, y1, x2, y2, types, cd, made(kernels), threshold, None,
+                                    threads, made(defocus), dose, blur)
+        return ("ok", r)
+    except Exception as e:  # noqa: BLE001 - handed back whole, re-raised on the submitting host
+        return ("error", type(e).__name__, str(e))

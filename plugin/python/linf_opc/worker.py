@@ -53,8 +53,12 @@ try:
     if scheduler:  # the tiles on a Dask cluster (cluster.py): this process is its client
         from linf_opc import cluster
         try:
-            kwargs["tiles"] = cluster.Tiles(cluster.connect(scheduler))
-            result = ("ok", getattr(core, name)(*args, **kwargs))
+            tiles = cluster.Tiles(cluster.connect(scheduler))
+            if name == "gauge_printability":  # its windows in chunks on the workers
+                result = ("ok", tiles.printability(*args, **kwargs))
+            else:
+                kwargs["tiles"] = tiles
+                result = ("ok", getattr(core, name)(*args, **kwargs))
         except cluster.ClusterError as e:
             result = ("ClusterError", str(e))
     else:

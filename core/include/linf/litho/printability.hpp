@@ -83,6 +83,17 @@ struct Printability {
 Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeColumns& gauges, const PrintModel& model,
                           int threads = 0);
 
+// For each chunk of points, (cx, cy)[starts[c], starts[c + 1]), the layer's polygons (with
+// their holes, in the layer's order) that meet the window of one of its points: everything
+// printability() clips for gauges there, so that it reads a chunk's gauges on its part exactly
+// as on the whole layer (the batch's Dask tasks). Flat arrays as FlatPolygons views them.
+struct LayerPart {
+  std::vector<std::int64_t> points, rings;
+  FlatPolygons view() const { return {points.data(), points.size() / 2, rings.data(), rings.size()}; }
+};
+std::vector<LayerPart> window_shapes(const FlatPolygons& layer, double dbu_nm, double period, const Strided<double>& cx,
+                                     const Strided<double>& cy, const std::vector<std::size_t>& starts);
+
 // The aerial images of windows for pictures (the report's printed contours): for each centre
 // (cx, cy) in DBU (on the half-DBU grid, as gauge points), the window of side P centred there
 // exactly as printability() clips it, imaged on an m x m grid: values[k][j * m + i] is the image
