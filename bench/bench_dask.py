@@ -3,6 +3,7 @@
 # needs: per-tile times on the workers, the submitting host's own share per tile, the bytes
 # moved, the scheduler's overhead per task, and each worker's peak memory.
 #   python3 bench/bench_dask.py [--wires 100000] [--workers 2] [--tile -1] [--overhead-tasks 2000] [--builder sweep]
+#                               [--litho euv]
 # Starts a dask-scheduler and --workers dask-workers (--nthreads 1) on 127.0.0.1 and stops them.
 # Both runs build the gauges (diagram + gauges, as cmd=gauges without its writers) with one
 # thread on the submitting host; the cluster's run must give the same voronoi.csv and gauges.csv
@@ -145,6 +146,73 @@ def project(r, tiles):
     return out
 
 
+LITHO = opt("--litho", "")  # the printability reading instead of the gauge stage
+if LITHO:  # the package's litho reading needs pya: KLayout's standalone modules, as the batch
+    from linf_opc import standalone
+    standalone.start()  # may run this process again, once
+
+
+def litho_bench(polys, n, client):
+    """--litho NAME: the gauges' printability (litho.rescore, as -rd litho=NAME reads it) with one
+    local thread, then with its chunks on the workers (cluster.Tiles.printability), on one gauge
+    stage built beforehand; the same columns, ranks and counts. Prints a JSON line and a row."""
+    import copy
+    from linf_opc import core as plugin_core, gauges as gauge_stage, litho
+    model = litho.model_of({"litho": LITHO})
+    base = gauge_stage.compute(polys, tile=-1, dbu=0.001, threads=1)
+    model.kernels, model.defocus  # computed beside the gauge stage; waited for here, not timed
+
+    def read(tiles=None):
+        r = copy.copy(base)
+        r.seconds = dict(base.seconds)
+        t0 = time.perf_counter()
+        if tiles is None:
+            litho.rescore(r, polys, 0.001, model, threads=1)
+        else:
+            with plugin_core.tiles_with(tiles):
+                litho.rescore(r, polys, 0.001, model, threads=1)
+        return r, time.perf_counter() - t0
+
+    def same(a, b):
+        la, lb = a.gauges.litho, b.gauges.litho
+        sa = {k: v for k, v in a.litho_summary.items() if k != "seconds"}
+        sb = {k: v for k, v in b.litho_summary.items() if k != "seconds"}
+        cols = all(getattr(la, k).tobytes() == getattr(lb, k).tobytes()
+                   for k in ("geo_score", "printed_cd", "pv_band", "fails"))
+        return cols and sa == sb and [c.tobytes() for c in a.gauges.columns()] == [c.tobytes() for c in b.gauges.columns()]
+
+    c0 = cpu_seconds()
+    r_local, t_local = read()
+    cpu_local = cpu_seconds() - c0
+    c0, w0, s0 = cpu_seconds(), client.run(cpu_seconds), client.run_on_scheduler(cpu_seconds)
+    with get_task_stream(client) as ts:
+        r_dask, t_dask = read(cluster.Tiles(client))
+    c1, w1, s1 = cpu_seconds(), client.run(cpu_seconds), client.run_on_scheduler(cpu_seconds)
+    spans = [(s["stop"] - s["start"]) for t in ts.data if t["key"].startswith("linf-litho")
+             for s in t["startstops"] if s["action"] == "compute"]
+    _, t_after = read()
+    t_local = min(t_local, t_after)
+    peak = client.run(lambda: __import__("resource").getrusage(__import__("resource").RUSAGE_SELF).ru_maxrss)
+    s = r_local.litho_summary
+    result = {"wires": n, "gauges": len(base.gauges), "model": LITHO, "simulated": s["simulated"],
+              "simulations": s["simulations"], "images": s["images"], "chunks": len(spans),
+              "local_seconds": t_local, "dask_seconds": t_dask, "speedup": t_local / t_dask,
+              "same": same(r_local, r_dask), "chunk_compute_sum_s": sum(spans),
+              "chunk_compute_max_s": max(spans) if spans else 0,
+              "cpu_local_s": cpu_local, "cpu_host_s": c1 - c0, "cpu_workers_s": sorted(w1[k] - w0[k] for k in w1),
+              "cpu_scheduler_s": s1 - s0, "worker_peak_rss_mb": sorted(v / 1024 for v in peak.values()),
+              "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
+    print(json.dumps(result))
+    print("| wires | gauges | simulations / line images | chunks | local, 1 thread | 2 workers x 1 thread | speed-up | "
+          "same | chunks on the workers: sum / max | CPU: local / host / workers / scheduler | worker peak RSS |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| %d | %d | %d / %d | %d | %.1f s | %.1f s | %.2f× | %s | %.1f / %.2f s | %.1f / %.1f / %s / %.1f s | %s MB |"
+          % (n, len(base.gauges), s["simulations"], s["images"], len(spans), t_local, t_dask, t_local / t_dask,
+             "yes" if result["same"] else "NO", sum(spans), result["chunk_compute_max_s"], cpu_local,
+             result["cpu_host_s"], " + ".join("%.1f" % v for v in result["cpu_workers_s"]), result["cpu_scheduler_s"],
+             ", ".join("%.0f" % v for v in result["worker_peak_rss_mb"])))
+
+
 n_wires = int(opt("--wires", "100000"))
 n_workers = int(opt("--workers", "2"))
 tile = float(opt("--tile", "-1"))
@@ -188,6 +256,9 @@ try:
         client.submit(noop, i, pure=False).result()
     round_trip = (time.perf_counter() - t0) / 200
 
+    if LITHO:
+        litho_bench(polys, n, client)
+        raise SystemExit(0)
     tiles = Measured(cluster.Tiles(client))
     # CPU time of every process of the cluster's run: on two shared cores the wall times above
     # include waiting for a core, the CPU times do not.

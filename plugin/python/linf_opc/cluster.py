@@ -96,7 +96,12 @@ class Tiles:
         self.threads = threads  # the builder's threads in a task; Dask runs --nthreads tasks a worker
         self.address = client.scheduler.address
         import cloudpickle
+        import dask
         cloudpickle.register_pickle_by_value(cluster_task)  # the workers need the core only
+        # Dask reads the source of the code that submits each task, for its dashboard's list of
+        # computations: 10 ms of this host's time a task (10 s of a 10^6-wire layer's 1,024
+        # tiles). No frame is worth it: every module is passed over.
+        dask.config.set({"distributed.diagnostics.computations.ignore-modules": [".*"]})
 
     def _slots(self):
         workers = self.client.scheduler_info().get("workers", {})
@@ -212,18 +217,21 @@ class Tiles:
         printed, band_, score = array("d", [float("nan")]) * n, array("d", [float("nan")]) * n, array("d", [float("nan")]) * n
         fails, nominal = bytearray(n), bytearray(n)
         images = 0
+        pending = collections.deque(zip(range(len(chunks)), chunks, futures))
         try:
-            for k, (c, future) in enumerate(zip(chunks, futures)):
+            while pending:
+                k, c, future = pending[0]
                 r = self._answer(self._gathered(future, "the printability of chunk %d" % k), c)
                 images += r["images"]
                 got = [array("d", r[name]) for name in ("printed_cd", "pv_band", "score")]
                 for j, i in enumerate(c):
                     printed[i], band_[i], score[i] = got[0][j], got[1][j], got[2][j]
                     fails[i], nominal[i] = r["fails"][j], r["fails_nominal"][j]
+                pending.popleft()
                 future.release()
         finally:
-            for f in futures:
-                f.cancel()
+            for _, _, future in pending:  # an error: the chunks not read yet
+                future.cancel()
         for i in range(n):
             j = source[i]
             if j != i:

@@ -61,6 +61,7 @@ def read_gauges(part, columns, kernels, defocus, threshold, dose, blur, dbu, thr
     the core, whatever module path the host's kernels were pickled under). Answers as
     build_tile: ('ok', the core's dict), ('missing', host, why) or ('error', class, message)."""
     import socket
+    reuse_freed_memory()
     try:
         core = _core()
     except ImportError as e:
