@@ -12,7 +12,9 @@ when the scheduler cannot be reached."""
 import collections
 from array import array
 import contextlib
+import itertools
 import logging
+import operator
 import re
 import socket
 import uuid
@@ -178,30 +180,30 @@ class Tiles:
         n = len(cx)
         cols = [array("d", c) for c in (cx, cy, x1, y1, x2, y2, cd)]
         kinds = array("i", types)
-        source = array("q", range(n))
-        if contexts is not None:
-            first = {}
-            for i, key in enumerate(zip(kinds, contexts)):
-                source[i] = first.setdefault(key, i)
-        reps = [i for i in range(n) if source[i] == i]
-        # Chunks of nearby points, so that a chunk's part of the layer is small; gauges on one
-        # point (one line: one image, counted once) stay in one chunk.
+        # Per gauge, the gauge it reads from; loops of C (map, zip, compress), not of Python: a
+        # layer has millions of gauges.
+        if contexts is None:
+            source = array("q", range(n))
+        else:
+            source = array("q", map({}.setdefault, zip(kinds, contexts), itertools.count()))
+        reps = list(itertools.compress(range(n), map(operator.eq, source, range(n))))
+        # Chunks of nearby points (bands of 64 periods, then x), so that a chunk's part of the
+        # layer is small; gauges on one point (one line: one image, counted once) stay together.
         band = 64 * max(1.0, kernels.period / dbu)
-        reps.sort(key=lambda i: (cols[1][i] // band, cols[0][i], cols[1][i], i))
+        rx, ry = [array("d", map(col.__getitem__, reps)) for col in cols[:2]]
+        order = sorted(zip(map(operator.floordiv, ry, itertools.repeat(band)), rx, ry, reps))
+        reps = [k[3] for k in order]
         size = max(256, min(8192, -(-len(reps) // (4 * self._slots()))))
         chunks, at = [], 0
         while at < len(reps):
             end = min(at + size, len(reps))
-            while end < len(reps) and (cols[0][reps[end]], cols[1][reps[end]]) == (cols[0][reps[end - 1]],
-                                                                                  cols[1][reps[end - 1]]):
+            while end < len(reps) and order[end][1:3] == order[end - 1][1:3]:
                 end += 1
             chunks.append(sorted(reps[at:end]))
             at = end
-        starts = array("q", [0])
-        for c in chunks:
-            starts.append(starts[-1] + len(c))
+        starts = array("q", itertools.accumulate(map(len, chunks), initial=0))
         flat = [i for c in chunks for i in c]
-        px, py = array("d", (cols[0][i] for i in flat)), array("d", (cols[1][i] for i in flat))
+        px, py = (array("d", map(col.__getitem__, flat)) for col in cols[:2])
         parts = core.litho_layer_parts(polygons, dbu, kernels.period, px, py, starts) if flat else []
         states = kernels.__getstate__(), None if defocus is None else defocus.__getstate__()
         run = uuid.uuid4().hex[:12]
@@ -210,12 +212,13 @@ class Tiles:
             warnings.simplefilter("ignore", UserWarning)  # a chunk's part of the layer, as a tile's job
             for k, (c, (points, rings)) in enumerate(zip(chunks, parts)):
                 part = (array("q", points), array("q", rings))
-                columns = tuple(array("d", (col[i] for i in c)) for col in cols) + (array("i", (kinds[i] for i in c)),)
+                columns = tuple(array("d", map(col.__getitem__, c)) for col in cols) + (array("i", map(kinds.__getitem__, c)),)
                 futures.append(self.client.submit(cluster_task.read_gauges, part, columns, states[0], states[1],
                                                   threshold, dose, blur, dbu, self.threads,
                                                   key="linf-litho-%s-%d" % (run, k), pure=False))
-        printed, band_, score = array("d", [float("nan")]) * n, array("d", [float("nan")]) * n, array("d", [float("nan")]) * n
-        fails, nominal = bytearray(n), bytearray(n)
+        # The chunks' readings, one after the other in `flat` order.
+        got = {name: array("d") for name in ("printed_cd", "pv_band", "score")}
+        got.update(fails=array("B"), fails_nominal=array("B"))
         images = 0
         pending = collections.deque(zip(range(len(chunks)), chunks, futures))
         try:
@@ -223,23 +226,19 @@ class Tiles:
                 k, c, future = pending[0]
                 r = self._answer(self._gathered(future, "the printability of chunk %d" % k), c)
                 images += r["images"]
-                got = [array("d", r[name]) for name in ("printed_cd", "pv_band", "score")]
-                for j, i in enumerate(c):
-                    printed[i], band_[i], score[i] = got[0][j], got[1][j], got[2][j]
-                    fails[i], nominal[i] = r["fails"][j], r["fails_nominal"][j]
+                for name, column in got.items():
+                    column.frombytes(r[name])
                 pending.popleft()
                 future.release()
         finally:
             for _, _, future in pending:  # an error: the chunks not read yet
                 future.cancel()
-        for i in range(n):
-            j = source[i]
-            if j != i:
-                printed[i], band_[i], score[i], fails[i], nominal[i] = printed[j], band_[j], score[j], fails[j], nominal[j]
-        return {"printed_cd": printed.tobytes(), "fails": bytes(fails), "fails_nominal": bytes(nominal),
-                "pv_band": band_.tobytes(), "score": score.tobytes(), "simulations": len(reps), "shared": n - len(reps),
-                "images": images, "seconds": time.perf_counter() - t0}
-
+        at = array("q", bytes(8 * n))  # where each simulated gauge's reading is in `flat` order
+        collections.deque(map(at.__setitem__, flat, itertools.count()), maxlen=0)
+        read = list(map(at.__getitem__, source))
+        out = {name: array(column.typecode, map(column.__getitem__, read)).tobytes() for name, column in got.items()}
+        out.update(simulations=len(reps), shared=n - len(reps), images=images, seconds=time.perf_counter() - t0)
+        return out
 
 _client = None
 
