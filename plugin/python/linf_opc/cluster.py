@@ -1,14 +1,18 @@
-"""The diagram's tiles on a Dask cluster (-rd scheduler=tcp://HOST:PORT).
+"""The diagram's tiles and the gauges' printability on a Dask cluster (-rd scheduler=tcp://HOST:PORT).
 
 in:  the scheduler's address; the core's tile jobs (bytes: one tile's sites and halo, never the
-     layer's), taken one at a time while the core plans the tiles
+     layer's), taken one at a time while the core plans the tiles; with -rd litho, the gauges'
+     printability columns (core.gauge_printability's arguments)
 out: each job's result bytes, handed back to the core in the order the jobs were taken; the
-     core then classifies, merges, checks and writes exactly as in a local run (same files)
+     core then classifies, merges, checks and writes exactly as in a local run (same files).
+     The printability's dict, as core.gauge_printability gives it (same bytes).
 
-Only the tiles leave this host; the far field, the merge, the check, the writers and every
-later stage run here. A lost worker's tasks are rerun by Dask on the others. Errors a user can
-meet are ClusterError (one line, exit code 2, as a UsageError), raised before anything is written
-when the scheduler cannot be reached."""
+Tiles.printability sends the gauges that simulate in chunks of nearby points, each with the part
+of the layer its windows see (core.litho_layer_parts): the reading of a window depends on those
+shapes alone. Everything else (the far field, the merge, the check, the gauges, the contexts,
+the writers, every later stage) runs here. A lost worker's tasks are rerun by Dask on the
+others. Errors a user can meet are ClusterError (one line, exit code 2, as a UsageError), raised
+before anything is written when the scheduler cannot be reached."""
 import collections
 from array import array
 import contextlib
@@ -91,7 +95,8 @@ def connect(address):
 
 
 class Tiles:
-    """The core's TileRunner (convert.hpp, runner_of): callable(next, done)."""
+    """The core's TileRunner (convert.hpp, runner_of): callable(next, done); and printability(),
+    core.gauge_printability on the workers (core.py routes it here while the cluster is on)."""
 
     def __init__(self, client, threads=1):
         self.client = client
