@@ -172,6 +172,43 @@ try:
         with distributed.Client(address, timeout=30, set_as_default=False) as c:
             prefixes = c.run_on_scheduler(lambda dask_scheduler: sorted(dask_scheduler.task_prefixes))
         expect("linf-litho" in prefixes, "the printability's chunks ran as tasks (the scheduler saw %s)" % prefixes)
+        # A worker SIGKILLed (with its nanny) while the chunks are read: Dask reruns its chunks on
+        # the other, which holds the kernels too; the same columns. 100,000 points on rows of
+        # wires, about 7 s on one thread.
+        import array
+        import threading
+        from linf_opc import cluster as dask_runner, core
+        kaddress, kworkers = cluster("litho_kill", 2, BUILD)
+        pts, rings = array.array("q"), array.array("q")
+        for k in range(1000):
+            for i in range(100):
+                x, y = 700 * i + 37 * (k % 5), 100 * k
+                pts.extend((x, y, x + 450, y, x + 450, y + 50, x, y + 50))
+                rings.append(4)
+        kernels, defocus = core.litho_kernels("euv"), core.litho_kernels("euv", defocus=30.0)
+        px = array.array("d", (700.0 * i + 225 + k % 7 for i in range(100) for k in range(1000)))
+        py = array.array("d", (100.0 * k + 75 for i in range(100) for k in range(1000)))
+        line = [array.array("d", (v + d for v in c)) for c, d in ((px, 0), (py, -25), (px, 0), (py, 25))]
+        args = ((pts, rings), 1.0, px, py, *line, array.array("i", [1]) * len(px), array.array("d", [50.0]) * len(px),
+                kernels, core.calibrate_threshold(kernels, 50, 100, 5.0)["threshold"])
+        how = dict(threads=1, dose=0.02, blur=5.0, defocus=defocus)
+        here = core.gauge_printability(*args, **how)
+        import distributed
+        client = distributed.Client(kaddress, timeout=30, set_as_default=False)
+        done = []
+
+        def kill():
+            time.sleep(1.0)
+            if not done:
+                signal_group(kworkers[0], signal.SIGKILL)
+                done.append("killed")
+        threading.Thread(target=kill, daemon=True).start()
+        there = dask_runner.Tiles(client).printability(*args, **how)
+        done.append("read")
+        client.close()
+        expect(done[0] == "killed", "a worker was killed while the chunks were read (%s)" % done)
+        expect(all(here[k] == there[k] for k in ("printed_cd", "fails", "fails_nominal", "pv_band", "score", "images")),
+               "the printability with a worker killed 1 s in: the same columns as in this process")
 
     if arg("editor", "0") == "1":
         # The editor's path: the core call in its watched worker process (worker.py), which

@@ -210,17 +210,20 @@ class Tiles:
         flat = [i for c in chunks for i in c]
         px, py = (array("d", map(col.__getitem__, flat)) for col in cols[:2])
         parts = core.litho_layer_parts(polygons, dbu, kernels.period, px, py, starts) if flat else []
-        states = kernels.__getstate__(), None if defocus is None else defocus.__getstate__()
         run = uuid.uuid4().hex[:12]
         futures = []
+        # The kernels (1.7 MB for euv's two sets) once to every worker, not in every chunk's task:
+        # each worker keeps a copy, so a lost one takes nothing the others need.
+        states = [kernels.__getstate__(), None if defocus is None else defocus.__getstate__()]
+        models = self.client.scatter([states], broadcast=True, hash=False)[0] if chunks else None
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", UserWarning)  # a chunk's part of the layer, as a tile's job
             for k, (c, (points, rings)) in enumerate(zip(chunks, parts)):
                 part = (array("q", points), array("q", rings))
                 columns = tuple(array("d", map(col.__getitem__, c)) for col in cols) + (array("i", map(kinds.__getitem__, c)),)
-                futures.append(self.client.submit(cluster_task.read_gauges, part, columns, states[0], states[1],
-                                                  threshold, dose, blur, dbu, self.threads,
-                                                  key="linf-litho-%s-%d" % (run, k), pure=False))
+                futures.append(self.client.submit(cluster_task.read_gauges, part, columns, models, threshold, dose,
+                                                  blur, dbu, self.threads, key="linf-litho-%s-%d" % (run, k),
+                                                  pure=False))
         # The chunks' readings, one after the other in `flat` order.
         got = {name: array("d") for name in ("printed_cd", "pv_band", "score")}
         got.update(fails=array("B"), fails_nominal=array("B"))
@@ -238,6 +241,8 @@ class Tiles:
         finally:
             for _, _, future in pending:  # an error: the chunks not read yet
                 future.cancel()
+            if models is not None:
+                models.release()
         at = array("q", bytes(8 * n))  # where each simulated gauge's reading is in `flat` order
         collections.deque(map(at.__setitem__, flat, itertools.count()), maxlen=0)
         read = list(map(at.__getitem__, source))

@@ -54,12 +54,13 @@ def _core():
     return core
 
 
-def read_gauges(part, columns, kernels, defocus, threshold, dose, blur, dbu, threads):
+def read_gauges(part, columns, models, threshold, dose, blur, dbu, threads):
     """One chunk of the gauges' printability: core.gauge_printability on the part of the layer
     the chunk's windows see. columns: (cx, cy, x1, y1, x2, y2, cd) arrays('d') and types
-    array('i'); kernels, defocus: LithoKernels states (plain tuples, so that a worker needs only
-    the core, whatever module path the host's kernels were pickled under). Answers as
-    build_tile: ('ok', the core's dict), ('missing', host, why) or ('error', class, message)."""
+    array('i'); models: [kernels, defocus], LithoKernels states (plain tuples, so that a worker
+    needs only the core, whatever module path the host's kernels were pickled under; defocus
+    None). Answers as build_tile: ('ok', the core's dict), ('missing', host, why) or ('error',
+    class, message)."""
     import socket
     reuse_freed_memory()
     try:
@@ -74,8 +75,8 @@ def read_gauges(part, columns, kernels, defocus, threshold, dose, blur, dbu, thr
             k.__setstate__(state)
             return k
         cx, cy, x1, y1, x2, y2, cd, types = columns
-        r = core.gauge_printability(part, dbu, cx, cy, x1, y1, x2, y2, types, cd, made(kernels), threshold, None,
-                                    threads, made(defocus), dose, blur)
+        r = core.gauge_printability(part, dbu, cx, cy, x1, y1, x2, y2, types, cd, made(models[0]), threshold, None,
+                                    threads, made(models[1]), dose, blur)
         return ("ok", r)
     except Exception as e:  # noqa: BLE001 - handed back whole, re-raised on the submitting host
         return ("error", type(e).__name__, str(e))
