@@ -119,6 +119,23 @@ def run(cmd, out, extra=(), background=False, launcher="klayout"):
     return subprocess.run(args, capture_output=True, text=True, env=env, timeout=1200)
 
 
+def wire_rows(rows, columns):
+    """Staggered rows of wires 450 x 50 DBU on a 100 DBU pitch as the core takes a layer, and a
+    space gauge in the gap above each wire (its point, its line across the gap, type external,
+    cd 50) as gauge_printability's columns."""
+    import array
+    pts, rings = array.array("q"), array.array("q")
+    for k in range(rows):
+        for i in range(columns):
+            x, y = 700 * i + 37 * (k % 5), 100 * k
+            pts.extend((x, y, x + 450, y, x + 450, y + 50, x, y + 50))
+            rings.append(4)
+    px = array.array("d", (700.0 * i + 225 + k % 7 for i in range(columns) for k in range(rows)))
+    py = array.array("d", (100.0 * k + 75 for i in range(columns) for k in range(rows)))
+    line = [array.array("d", (v + d for v in c)) for c, d in ((px, 0), (py, -25), (px, 0), (py, 25))]
+    return (pts, rings), (px, py, *line, array.array("i", [1]) * len(px), array.array("d", [50.0]) * len(px))
+
+
 ly = pya.Layout()
 ly.read(arg("input"))
 top = ly.cell(arg("cell")) if arg("cell", None) else ly.top_cells()[0]
@@ -175,22 +192,13 @@ try:
         # A worker SIGKILLed (with its nanny) while the chunks are read: Dask reruns its chunks on
         # the other, which holds the kernels too; the same columns. 100,000 points on rows of
         # wires, about 7 s on one thread.
-        import array
         import threading
         from linf_opc import cluster as dask_runner, core
         kaddress, kworkers = cluster("litho_kill", 2, BUILD)
-        pts, rings = array.array("q"), array.array("q")
-        for k in range(1000):
-            for i in range(100):
-                x, y = 700 * i + 37 * (k % 5), 100 * k
-                pts.extend((x, y, x + 450, y, x + 450, y + 50, x, y + 50))
-                rings.append(4)
+        # (Not named `layer`: the -rd values are this script's globals.)
+        wires, gauges = wire_rows(1000, 100)
         kernels, defocus = core.litho_kernels("euv"), core.litho_kernels("euv", defocus=30.0)
-        px = array.array("d", (700.0 * i + 225 + k % 7 for i in range(100) for k in range(1000)))
-        py = array.array("d", (100.0 * k + 75 for i in range(100) for k in range(1000)))
-        line = [array.array("d", (v + d for v in c)) for c, d in ((px, 0), (py, -25), (px, 0), (py, 25))]
-        args = ((pts, rings), 1.0, px, py, *line, array.array("i", [1]) * len(px), array.array("d", [50.0]) * len(px),
-                kernels, core.calibrate_threshold(kernels, 50, 100, 5.0)["threshold"])
+        args = (wires, 1.0, *gauges, kernels, core.calibrate_threshold(kernels, 50, 100, 5.0)["threshold"])
         how = dict(threads=1, dose=0.02, blur=5.0, defocus=defocus)
         here = core.gauge_printability(*args, **how)
         import distributed
@@ -215,13 +223,7 @@ try:
         # connects to the cluster itself (core.tiles_at); the same voronoi.csv as in this process.
         import array
         from linf_opc import core, worker
-        pts, rings = array.array("q"), array.array("q")
-        for k in range(40):
-            for i in range(12):
-                x, y = 700 * i + 37 * (k % 5), 100 * k
-                pts.extend((x, y, x + 450, y, x + 450, y + 50, x, y + 50))
-                rings.append(4)
-        polys = (pts, rings)
+        polys, gauges = wire_rows(40, 12)
         local_csv, editor_csv = os.path.join(work, "editor_local.csv"), os.path.join(work, "editor_dask.csv")
         core.voronoi_polygons(polys, threads=1, tile=1000, csv=local_csv, pieces=False)
         with core.running_with(worker.Runner()), core.tiles_at(address):
@@ -232,17 +234,13 @@ try:
         # The printability from the editor's worker process: read in chunks on the cluster, the
         # same columns as in this process: the spaces between the rows of wires.
         kernels = core.litho_kernels("euv")
-        pts_x = array.array("d", (700.0 * i + 225 for i in range(12) for k in range(40)))
-        pts_y = array.array("d", (100.0 * k + 75 for i in range(12) for k in range(40)))
-        line = [array.array("d", (v + d for v in c)) for c, d in ((pts_x, 0), (pts_y, -25), (pts_x, 0), (pts_y, 25))]
-        kinds, cds = array.array("i", [1]) * len(pts_x), array.array("d", [50.0]) * len(pts_x)
         how = dict(threads=1, dose=0.02, blur=5.0)
         t = core.calibrate_threshold(kernels, 50, 100, 5.0)["threshold"]
-        here = core.gauge_printability(polys, 1.0, pts_x, pts_y, *line, kinds, cds, kernels, t, **how)
+        here = core.gauge_printability(polys, 1.0, *gauges, kernels, t, **how)
         with core.running_with(worker.Runner()), core.tiles_at(address):
-            there = core.gauge_printability(polys, 1.0, pts_x, pts_y, *line, kinds, cds, kernels, t, **how)
+            there = core.gauge_printability(polys, 1.0, *gauges, kernels, t, **how)
         measured = sum(v == v for v in array.array("d", here["printed_cd"]))
-        expect(measured > 0, "the editor's printability points measure something (%d of %d)" % (measured, len(pts_x)))
+        expect(measured > 0, "the editor's printability points measure something (%d of %d)" % (measured, len(gauges[0])))
         expect(all(here[k] == there[k] for k in ("printed_cd", "fails", "fails_nominal", "pv_band", "score", "images")),
                "the editor's worker process reads the printability on the cluster as this process does")
         try:
