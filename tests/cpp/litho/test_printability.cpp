@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -448,4 +449,69 @@ TEST(Printability, HalfDbuPointsAreCentredExactly) {
     got.push_back(p.printed_cd[1]);
   }
   for (std::size_t i = 2; i < got.size(); ++i) EXPECT_NEAR(got[i], got[i % 2], 1e-9) << i;
+}
+
+// The batch's Dask tasks (cluster.Tiles.printability): gauges read in chunks, each on the part
+// of the layer its windows meet (window_shapes), give the same bytes as on the whole layer. Line
+// pairs 1 um apart put neighbours across every window's sides; the parts also hold a hole, a
+// slanted edge and a wire crossing every window, and leave out what no window of theirs meets.
+TEST(Printability, ChunksReadOnTheirPartsAsOnTheLayer) {
+  std::vector<Polygon> layer;
+  Gauges g;
+  for (int k = 0; k < 10; ++k) {  // widths 60 to 150 nm, spaces 100 nm
+    const Coord x = 1000 * k, w = 60 + 10 * k;
+    layer.push_back(box(x + 100, 500, x + 100 + w, 1500));
+    layer.push_back(box(x + 200 + w, 500, x + 200 + 2 * w, 1500));
+    g.add(x + 100 + w / 2.0, 1000, true, double(w), kInternal);
+    g.add(x + 150 + w, 1000, true, 100, kExternal);
+  }
+  layer.push_back(box(0, 1900, 10000, 1990));  // within every pair's window, across its sides
+  Polygon ring = box(12000, 400, 12600, 1600);
+  ring.holes.push_back({{12100, 500}, {12100, 1500}, {12500, 1500}, {12500, 500}});
+  layer.push_back(ring);
+  g.add(12050, 1000, true, 100, kInternal);  // across the ring's left wall
+  layer.push_back(Polygon{{{15000, 500}, {15200, 500}, {15900, 1500}, {15700, 1500}}, {}});
+  g.add(15450, 1000, true, 200, kInternal);  // across the slanted bar
+  const PolygonArrays flat = flat_of(layer);
+  const PrintModel model{&focus(), T};
+  const Printability whole = printability(flat.view(), 1.0, g.columns(false), model, 1);
+  const std::vector<std::size_t> starts{0, 5, 13, g.cx.size()};
+  const std::vector<LayerPart> parts =
+      window_shapes(flat.view(), 1.0, focus().period, Gauges::col(g.cx), Gauges::col(g.cy), starts);
+  ASSERT_EQ(parts.size(), 3u);
+  std::size_t images = 0, measured = 0;
+  for (std::size_t c = 0; c < parts.size(); ++c) {
+    Gauges sub;
+    std::size_t meet = 0;  // the polygons whose boxes meet a window of the chunk (side 2048 nm)
+    for (const Polygon& q : layer) {
+      Coord lx = q.outer[0].x, hx = lx, ly = q.outer[0].y, hy = ly;
+      for (const Point& v : q.outer) lx = std::min(lx, v.x), hx = std::max(hx, v.x), ly = std::min(ly, v.y), hy = std::max(hy, v.y);
+      bool any = false;
+      for (std::size_t i = starts[c]; i < starts[c + 1]; ++i)
+        any = any || (lx <= g.cx[i] + 1024 && hx >= g.cx[i] - 1024 && ly <= g.cy[i] + 1024 && hy >= g.cy[i] - 1024);
+      meet += any;
+    }
+    for (std::size_t i = starts[c]; i < starts[c + 1]; ++i) {
+      sub.cx.push_back(g.cx[i]), sub.cy.push_back(g.cy[i]), sub.x1.push_back(g.x1[i]), sub.y1.push_back(g.y1[i]);
+      sub.x2.push_back(g.x2[i]), sub.y2.push_back(g.y2[i]), sub.cd.push_back(g.cd[i]), sub.type.push_back(g.type[i]);
+    }
+    const Printability p = printability(parts[c].view(), 1.0, sub.columns(false), model, 1);
+    images += p.images;
+    for (std::size_t j = 0; j < sub.cx.size(); ++j) {
+      const std::size_t i = starts[c] + j;
+      EXPECT_EQ(std::memcmp(&p.printed_cd[j], &whole.printed_cd[i], sizeof(double)), 0) << i;
+      EXPECT_EQ(std::memcmp(&p.score[j], &whole.score[i], sizeof(double)), 0) << i;
+      EXPECT_EQ(p.fails[j], whole.fails[i]) << i;
+      measured += !std::isnan(p.printed_cd[j]);
+    }
+    std::size_t outer = 0, holes = 0;
+    for (const std::int64_t r : parts[c].rings) (r > 0 ? outer : holes) += 1;
+    EXPECT_EQ(outer, meet) << c;
+    EXPECT_LT(outer, layer.size()) << c;  // a part is not the layer
+    EXPECT_EQ(holes, c == 2 ? 1u : 0u) << c;
+  }
+  EXPECT_EQ(images, whole.images);
+  EXPECT_GT(measured, g.cx.size() / 2);
+  EXPECT_THROW(window_shapes(flat.view(), 1.0, focus().period, Gauges::col(g.cx), Gauges::col(g.cy), {0, 9, 4}),
+               std::invalid_argument);
 }
