@@ -106,8 +106,8 @@ class Tiles:
         import dask
         cloudpickle.register_pickle_by_value(cluster_task)  # the workers need the core only
         # Dask reads the source of the code that submits each task, for its dashboard's list of
-        # computations: 10 ms of this host's time a task (10 s of a 10^6-wire layer's 1,024
-        # tiles). No frame is worth it: every module is passed over.
+        # computations: 10 ms of this host's time a task in a profile. No frame of ours is worth
+        # it: every module is passed over.
         dask.config.set({"distributed.diagnostics.computations.ignore-modules": [".*"]})
 
     def _slots(self):
@@ -172,7 +172,6 @@ class Tiles:
         finally:
             for _, future in pending:
                 future.cancel()
-
 
     def printability(self, polygons, dbu, cx, cy, x1, y1, x2, y2, types, cd, kernels, threshold, contexts=None,
                      threads=0, defocus=None, dose=0.0, blur=0.0):
@@ -249,6 +248,7 @@ class Tiles:
         out = {name: array(column.typecode, map(column.__getitem__, read)).tobytes() for name, column in got.items()}
         out.update(simulations=len(reps), shared=n - len(reps), images=images, seconds=time.perf_counter() - t0)
         return out
+
 
 _client = None
 

@@ -1,4 +1,5 @@
-"""What a Dask worker runs for one tile: the core's build_tile_job on the job's bytes.
+"""What a Dask worker runs: one tile (build_tile: the core's build_tile_job on the job's bytes)
+or one chunk of the gauges' printability (read_gauges: core.gauge_printability on its part).
 
 Sent to the workers by value (cluster.py registers this module with cloudpickle), so a worker
 needs only the compiled core (linf_opc_core) on its Python path, not this package; a worker
@@ -29,29 +30,32 @@ def reuse_freed_memory():
         pass
 
 
+def _core():
+    """The compiled core, on the worker's path or beside the installed KLayout package (where
+    the module sits beside the package's sources); without it, the first ImportError."""
+    try:
+        import linf_opc_core as core
+        return core
+    except ImportError as first:
+        try:
+            from linf_opc import linf_opc_core as core
+            return core
+        except ImportError:
+            raise first from None
+
+
 def build_tile(job, threads):
     """('ok', result bytes), ('missing', host, why) or ('error', class name, message)."""
     import socket
     reuse_freed_memory()
     try:
-        import linf_opc_core as core
-    except ImportError as first:
-        try:  # the installed KLayout package: the module sits beside the package's sources
-            from linf_opc import linf_opc_core as core
-        except ImportError:
-            return ("missing", socket.gethostname(), str(first))
+        core = _core()
+    except ImportError as e:
+        return ("missing", socket.gethostname(), str(e))
     try:
         return ("ok", core.build_tile_job(job, threads))
     except Exception as e:  # noqa: BLE001 - handed back whole, re-raised on the submitting host
         return ("error", type(e).__name__, str(e))
-
-
-def _core():
-    try:
-        import linf_opc_core as core
-    except ImportError:
-        from linf_opc import linf_opc_core as core  # the installed KLayout package
-    return core
 
 
 def read_gauges(part, columns, models, threshold, dose, blur, dbu, threads):
