@@ -114,8 +114,6 @@ class Layer {
     }
   }
 
-  std::size_t size() const { return polys_.size(); }
-
  private:
   struct Poly {
     std::size_t first_ring, rings, first_point;
@@ -156,14 +154,15 @@ std::vector<LayerPart> window_shapes(const FlatPolygons& layer, double dbu_nm, d
   const std::int64_t W = window_side(period, dbu_nm);
   const Layer shapes(layer, std::max<std::int64_t>(W / 2, 1));
   std::vector<LayerPart> parts;
-  std::vector<char> in(shapes.size(), 0);
+  std::vector<std::size_t> ids;  // a chunk's polygons: its own, never a pass over the layer's
   for (std::size_t c = 0; c + 1 < starts.size(); ++c) {
-    std::fill(in.begin(), in.end(), 0);
+    ids.clear();
     for (std::size_t k = starts[c]; k < starts[c + 1]; ++k)
-      for (std::size_t i : shapes.meeting(window_origin(cx[k], W), window_origin(cy[k], W), W)) in[i] = 1;
+      for (std::size_t i : shapes.meeting(window_origin(cx[k], W), window_origin(cy[k], W), W)) ids.push_back(i);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
     LayerPart& part = parts.emplace_back();
-    for (std::size_t i = 0; i < in.size(); ++i)
-      if (in[i]) shapes.append(i, part.points, part.rings);
+    for (std::size_t i : ids) shapes.append(i, part.points, part.rings);
   }
   return parts;
 }
