@@ -44,8 +44,9 @@ def _core():
             raise first from None
 
 
-def build_tile(job, threads):
-    """('ok', result bytes), ('missing', host, why) or ('error', class name, message)."""
+def _answered(work):
+    """work(core) on this worker, as a task answers: ('ok', its result), ('missing', host, why)
+    without the core, or ('error', class name, message)."""
     import socket
     reuse_freed_memory()
     try:
@@ -53,25 +54,23 @@ def build_tile(job, threads):
     except ImportError as e:
         return ("missing", socket.gethostname(), str(e))
     try:
-        return ("ok", core.build_tile_job(job, threads))
+        return ("ok", work(core))
     except Exception as e:  # noqa: BLE001 - handed back whole, re-raised on the submitting host
         return ("error", type(e).__name__, str(e))
 
 
+def build_tile(job, threads):
+    """One tile's result bytes, answered as _answered."""
+    return _answered(lambda core: core.build_tile_job(job, threads))
+
+
 def read_gauges(part, columns, models, threshold, dose, blur, dbu, threads):
     """One chunk of the gauges' printability: core.gauge_printability on the part of the layer
-    the chunk's windows see. columns: (cx, cy, x1, y1, x2, y2, cd) arrays('d') and types
-    array('i'); models: [kernels, defocus], LithoKernels states (plain tuples, so that a worker
-    needs only the core, whatever module path the host's kernels were pickled under; defocus
-    None). Answers as build_tile: ('ok', the core's dict), ('missing', host, why) or ('error',
-    class, message)."""
-    import socket
-    reuse_freed_memory()
-    try:
-        core = _core()
-    except ImportError as e:
-        return ("missing", socket.gethostname(), str(e))
-    try:
+    the chunk's windows see, answered as _answered. columns: (cx, cy, x1, y1, x2, y2, cd)
+    arrays('d') and types array('i'); models: [kernels, defocus], LithoKernels states (plain
+    tuples, so that a worker needs only the core, whatever module path the host's kernels were
+    pickled under; defocus None)."""
+    def read(core):
         def made(state):
             if state is None:
                 return None
@@ -79,8 +78,6 @@ def read_gauges(part, columns, models, threshold, dose, blur, dbu, threads):
             k.__setstate__(state)
             return k
         cx, cy, x1, y1, x2, y2, cd, types = columns
-        r = core.gauge_printability(part, dbu, cx, cy, x1, y1, x2, y2, types, cd, made(models[0]), threshold, None,
-                                    threads, made(models[1]), dose, blur)
-        return ("ok", r)
-    except Exception as e:  # noqa: BLE001 - handed back whole, re-raised on the submitting host
-        return ("error", type(e).__name__, str(e))
+        return core.gauge_printability(part, dbu, cx, cy, x1, y1, x2, y2, types, cd, made(models[0]), threshold,
+                                       None, threads, made(models[1]), dose, blur)
+    return _answered(read)
