@@ -230,6 +230,34 @@ void bind_gauges(py::module_& m) {
       "The gauge table's records in a new order: `data` holds records of `size` bytes (the table's reals\n"
       "or ints), `order` (array('i')) names each record once; record k of the result is record order[k].\n"
       "ValueError when the data is not whole records or the order is not a permutation.");
+
+  m.def(
+      "take_records",
+      [](const py::buffer& data, std::size_t size, const py::buffer& index) {
+        const py::buffer_info d = data.request();
+        if (d.ndim != 1 || d.strides[0] != d.itemsize) throw py::value_error("take_records: the data must be contiguous");
+        const std::size_t bytes = std::size_t(d.size) * std::size_t(d.itemsize);
+        if (size == 0 || bytes % size != 0) throw py::value_error("take_records: the data is not whole records");
+        const py::buffer_info x = index.request();
+        if (x.ndim != 1 || x.itemsize != 8 || (x.format != "q" && x.format != "l"))
+          throw py::value_error("take_records: the index must be a one-dimensional buffer of int64, array('q')");
+        const std::size_t n = bytes / size, m = std::size_t(x.shape[0]);
+        const char* at = static_cast<const char*>(x.ptr);
+        char* to = nullptr;
+        py::bytes out = blank_bytes(m * size, to);
+        const char* from = static_cast<const char*>(d.ptr);
+        for (std::size_t k = 0; k < m; ++k) {
+          std::int64_t i;
+          std::memcpy(&i, at + std::ptrdiff_t(k) * x.strides[0], sizeof i);
+          if (i < 0 || std::size_t(i) >= n) throw py::value_error("take_records: an index names no record");
+          std::memcpy(to + k * size, from + std::size_t(i) * size, size);
+        }
+        return out;
+      },
+      py::arg("data"), py::arg("size"), py::arg("index"),
+      "Records picked by number: `data` holds records of `size` bytes, `index` (array('q')) numbers them;\n"
+      "record k of the result is record index[k] (any number of times, or none). A loop of C over columns\n"
+      "of millions of gauges. ValueError for data that is not whole records or an index that names none.");
 }
 
 }  // namespace linf::bind

@@ -13,10 +13,12 @@
 #include "bind.hpp"
 #include "convert.hpp"
 #include "linf/litho/calibration.hpp"
+#include "linf/litho/chunks.hpp"
 #include "linf/litho/contour.hpp"
 #include "linf/litho/opc.hpp"
 #include "linf/litho/optics.hpp"
 #include "linf/litho/printability.hpp"
+#include "linf/litho/ranking.hpp"
 
 namespace linf::bind {
 
@@ -25,6 +27,25 @@ namespace {
 template <class T>
 Strided<T> strided(const Column<T>& c) {
   return c.values;
+}
+
+// The optional context ids (array('Q')), read in place; `held` keeps the buffer while the core reads.
+Strided<std::uint64_t> context_ids(const py::object& contexts, py::buffer_info& held) {
+  Strided<std::uint64_t> ids;
+  if (contexts.is_none()) return ids;
+  held = py::buffer(contexts).request();
+  if (held.ndim != 1 || held.itemsize != 8 || (held.format != "Q" && held.format != "L" && held.format != "B"))
+    throw py::value_error("contexts must be a one-dimensional buffer of unsigned 64-bit ids, array('Q')");
+  ids.data = static_cast<const char*>(held.ptr);
+  ids.stride = held.strides[0];
+  ids.n = std::size_t(held.shape[0]);
+  return ids;
+}
+
+template <class T>
+py::bytes int64_bytes(const std::vector<T>& v) {
+  const std::vector<std::int64_t> out(v.begin(), v.end());
+  return bytes_of(out);
 }
 
 }  // namespace
@@ -141,6 +162,47 @@ void bind_litho(py::module_& m) {
       "the layer's order. gauge_printability reads a chunk's gauges on its part exactly as on the layer.");
 
   m.def(
+      "litho_chunks",
+      [](const py::buffer& cx, const py::buffer& cy, const py::buffer& types, const py::object& contexts, double band,
+         std::size_t wanted) {
+        const auto ccx = column_of<double>(cx, "cx"), ccy = column_of<double>(cy, "cy");
+        const auto ct = column_of<std::int32_t>(types, "types");
+        py::buffer_info held;
+        const Strided<std::uint64_t> ids = context_ids(contexts, held);
+        litho::Chunks c;
+        {
+          py::gil_scoped_release unlocked;
+          c = litho::plan_chunks(strided(ccx), strided(ccy), strided(ct), ids, band, wanted);
+        }
+        return py::make_tuple(int64_bytes(c.gauges), int64_bytes(c.starts), int64_bytes(c.at));
+      },
+      py::arg("cx"), py::arg("cy"), py::arg("types"), py::arg("contexts"), py::arg("band"), py::arg("wanted"),
+      "The chunks of gauge_printability's simulating gauges for tasks elsewhere (docs/design.md, 'The\n"
+      "printability elsewhere'): cx, cy (float64, DBU), types (int32) and contexts (array('Q') or None) as\n"
+      "gauge_printability takes them; band: the height (DBU) of the bands points are sorted in; wanted: about\n"
+      "how many chunks. (gauges, starts, at) as bytes of int64: the simulating gauges chunk after chunk, chunk c\n"
+      "being gauges[starts[c]:starts[c + 1]]; at[i]: where gauge i's reading is in that order.");
+
+  m.def(
+      "litho_rank",
+      [](const py::buffer& score, const py::buffer& printed_cd, const py::buffer& fails) {
+        const auto cs = column_of<double>(score, "score"), cp = column_of<double>(printed_cd, "printed_cd");
+        const auto cf = column_of<std::uint8_t>(fails, "fails");
+        litho::Ranking r;
+        {
+          py::gil_scoped_release unlocked;
+          r = litho::rank_by_printability(strided(cs), strided(cp), strided(cf));
+        }
+        return py::make_tuple(bytes_of(r.order), bytes_of(r.score), r.read, r.highest);
+      },
+      py::arg("score"), py::arg("printed_cd"), py::arg("fails"),
+      "The gauges ranked by printability (docs/design.md, 'Re-ranking'): score, printed_cd (float64) and\n"
+      "fails (uint8) per gauge in the table's order, as gauge_printability gives them (NaN, NaN, 0 for a\n"
+      "gauge not simulated). (order, score, read, highest): order as bytes of int32 (the read gauges by\n"
+      "score, ties and the unread ones in the table's order), the scores in that order (bytes of float64,\n"
+      "an unread gauge given the highest read one, 1 if none), how many were read, the highest score.");
+
+  m.def(
       "calibrate_threshold",
       [](const litho::Kernels& k, double width, double pitch, double blur) {
         const litho::Calibration c = litho::calibrate_threshold(k, width, pitch, blur);
@@ -201,14 +263,7 @@ void bind_litho(py::module_& m) {
         litho::GaugeColumns g{strided(ccx), strided(ccy), strided(cx1), strided(cy1), strided(cx2),
                               strided(cy2), strided(ct),  strided(ccd), {}};
         py::buffer_info ids;
-        if (!contexts.is_none()) {
-          ids = py::buffer(contexts).request();
-          if (ids.ndim != 1 || ids.itemsize != 8 || (ids.format != "Q" && ids.format != "L" && ids.format != "B"))
-            throw py::value_error("contexts must be a one-dimensional buffer of unsigned 64-bit ids, array('Q')");
-          g.context.data = static_cast<const char*>(ids.ptr);
-          g.context.stride = ids.strides[0];
-          g.context.n = std::size_t(ids.shape[0]);
-        }
+        g.context = context_ids(contexts, ids);
         litho::Printability p;
         const auto t0 = std::chrono::steady_clock::now();
         {

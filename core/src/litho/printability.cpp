@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "litho/clip.hpp"
+#include "linf/litho/chunks.hpp"
 #include "linf/litho/image.hpp"
 #include "linf/litho/mask.hpp"
 #include "linf/litho/resist.hpp"
@@ -202,25 +203,9 @@ Printability printability(const FlatPolygons& layer, double dbu_nm, const GaugeC
     }
   }
   // Who simulates: the first gauge of each (type, context); the others read its result.
-  std::vector<std::size_t> source(n);
-  std::vector<std::size_t> reps;
-  {
-    std::unordered_map<std::uint64_t, std::vector<std::pair<std::int32_t, std::size_t>>> first;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (g.context.size() == 0) {
-        source[i] = i, reps.push_back(i);
-        continue;
-      }
-      auto& v = first[g.context[i]];
-      const auto it = std::find_if(v.begin(), v.end(), [&](const auto& e) { return e.first == g.type[i]; });
-      if (it != v.end()) {
-        source[i] = it->second;
-      } else {
-        v.push_back({g.type[i], i});
-        source[i] = i, reps.push_back(i);
-      }
-    }
-  }
+  const Sources sources = sources_of(g.type, g.context);
+  const std::vector<std::size_t>& source = sources.source;
+  const std::vector<std::size_t>& reps = sources.reps;
   Printability out;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   out.printed_cd.assign(n, nan);

@@ -16,9 +16,7 @@ before anything is written when the scheduler cannot be reached."""
 import collections
 from array import array
 import contextlib
-import itertools
 import logging
-import operator
 import re
 import socket
 import uuid
@@ -182,44 +180,28 @@ class Tiles:
         import time
         t0 = time.perf_counter()
         n = len(cx)
-        cols = [array("d", c) for c in (cx, cy, x1, y1, x2, y2, cd)]
         kinds = array("i", types)
-        # Per gauge, the gauge it reads from; loops of C (map, zip, compress), not of Python: a
-        # layer has millions of gauges.
-        if contexts is None:
-            source = array("q", range(n))
-        else:
-            source = array("q", map({}.setdefault, zip(kinds, contexts), itertools.count()))
-        reps = list(itertools.compress(range(n), map(operator.eq, source, range(n))))
-        # Chunks of nearby points (bands of 64 periods, then x), so that a chunk's part of the
-        # layer is small; gauges on one point (one line: one image, counted once) stay together.
+        # Who simulates and the chunks (the core's rule, litho_chunks): nearby points together,
+        # so that a chunk's part of the layer is small, about four chunks a worker thread.
         band = 64 * max(1.0, kernels.period / dbu)
-        rx, ry = [array("d", map(col.__getitem__, reps)) for col in cols[:2]]
-        order = sorted(zip(map(operator.floordiv, ry, itertools.repeat(band)), rx, ry, reps))
-        reps = [k[3] for k in order]
-        size = max(256, min(8192, -(-len(reps) // (4 * self._slots()))))
-        chunks, at = [], 0
-        while at < len(reps):
-            end = min(at + size, len(reps))
-            while end < len(reps) and order[end][1:3] == order[end - 1][1:3]:
-                end += 1
-            chunks.append(sorted(reps[at:end]))
-            at = end
-        starts = array("q", itertools.accumulate(map(len, chunks), initial=0))
-        flat = [i for c in chunks for i in c]
-        px, py = (array("d", map(col.__getitem__, flat)) for col in cols[:2])
-        parts = core.litho_layer_parts(polygons, dbu, kernels.period, px, py, starts) if flat else []
+        flat, starts, at = (array("q", b) for b in core.litho_chunks(cx, cy, kinds, contexts, band, 4 * self._slots()))
+        # The chunks' columns gathered once in chunk order (loops of C: a layer has millions of
+        # gauges), then cut.
+        cols = [array("d", core.take_records(c, 8, flat)) for c in (cx, cy, x1, y1, x2, y2, cd)]
+        cols.append(array("i", core.take_records(kinds, 4, flat)))
+        bounds = list(zip(starts[:-1], starts[1:]))
+        parts = core.litho_layer_parts(polygons, dbu, kernels.period, cols[0], cols[1], starts) if flat else []
         run = uuid.uuid4().hex[:12]
         futures = []
         # The kernels (1.7 MB for euv's two sets) once to every worker, not in every chunk's task:
         # each worker keeps a copy, so a lost one takes nothing the others need.
         states = [kernels.__getstate__(), None if defocus is None else defocus.__getstate__()]
-        models = self.client.scatter([states], broadcast=True, hash=False)[0] if chunks else None
+        models = self.client.scatter([states], broadcast=True, hash=False)[0] if bounds else None
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", UserWarning)  # a chunk's part of the layer, as a tile's job
-            for k, (c, (points, rings)) in enumerate(zip(chunks, parts)):
+            for k, ((a, b), (points, rings)) in enumerate(zip(bounds, parts)):
                 part = (array("q", points), array("q", rings))
-                columns = tuple(array("d", map(col.__getitem__, c)) for col in cols) + (array("i", map(kinds.__getitem__, c)),)
+                columns = tuple(col[a:b] for col in cols)
                 futures.append(self.client.submit(cluster_task.read_gauges, part, columns, models, threshold, dose,
                                                   blur, dbu, self.threads, key="linf-litho-%s-%d" % (run, k),
                                                   pure=False))
@@ -227,11 +209,11 @@ class Tiles:
         got = {name: array("d") for name in ("printed_cd", "pv_band", "score")}
         got.update(fails=array("B"), fails_nominal=array("B"))
         images = 0
-        pending = collections.deque(zip(range(len(chunks)), chunks, futures))
+        pending = collections.deque(zip(range(len(bounds)), bounds, futures))
         try:
             while pending:
-                k, c, future = pending[0]
-                r = self._answer(self._gathered(future, "the printability of chunk %d" % k), c)
+                k, (a, b), future = pending[0]
+                r = self._answer(self._gathered(future, "the printability of chunk %d" % k), flat[a:b])
                 images += r["images"]
                 for name, column in got.items():
                     column.frombytes(r[name])
@@ -242,11 +224,9 @@ class Tiles:
                 future.cancel()
             if models is not None:
                 models.release()
-        at = array("q", bytes(8 * n))  # where each simulated gauge's reading is in `flat` order
-        collections.deque(map(at.__setitem__, flat, itertools.count()), maxlen=0)
-        read = list(map(at.__getitem__, source))
-        out = {name: array(column.typecode, map(column.__getitem__, read)).tobytes() for name, column in got.items()}
-        out.update(simulations=len(reps), shared=n - len(reps), images=images, seconds=time.perf_counter() - t0)
+        # Each gauge takes its source's reading, where the chunks' order put it.
+        out = {name: core.take_records(column, column.itemsize, at) for name, column in got.items()}
+        out.update(simulations=len(flat), shared=n - len(flat), images=images, seconds=time.perf_counter() - t0)
         return out
 
 

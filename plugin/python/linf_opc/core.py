@@ -58,11 +58,14 @@ litho_kernels = _core.litho_kernels
 calibrate_threshold = _core.calibrate_threshold
 litho_window_images = _core.litho_window_images
 litho_layer_parts = _core.litho_layer_parts
+litho_chunks = _core.litho_chunks
+litho_rank = _core.litho_rank
 litho_contours = _core.litho_contours
 # Arithmetic on one segment, called once a drawn edge: always in this process.
 cut_to_drawable = _core.cut_to_drawable
-# A copy of the gauge table's records in another order: always in this process.
+# Copies of the gauge table's records or columns in another order: always in this process.
 permute_records = _core.permute_records
+take_records = _core.take_records
 
 
 @contextlib.contextmanager
