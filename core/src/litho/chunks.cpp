@@ -6,7 +6,6 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
-#include <unordered_map>
 #include <utility>
 
 namespace linf::litho {
@@ -16,22 +15,31 @@ Sources sources_of(const Strided<std::int32_t>& type, const Strided<std::uint64_
   if (context.size() != 0 && context.size() != n) throw std::invalid_argument("printability: the context ids are not one a gauge");
   Sources s;
   s.source.resize(n);
-  // A context id is shared by gauges of several types; each type of it simulates once.
-  std::unordered_map<std::uint64_t, std::vector<std::pair<std::int32_t, std::size_t>>> first;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (context.size() == 0) {
-      s.source[i] = i, s.reps.push_back(i);
-      continue;
-    }
-    auto& v = first[context[i]];
-    const auto it = std::find_if(v.begin(), v.end(), [&](const auto& e) { return e.first == type[i]; });
-    if (it != v.end()) {
-      s.source[i] = it->second;
-    } else {
-      v.push_back({type[i], i});
-      s.source[i] = i, s.reps.push_back(i);
-    }
+  if (context.size() == 0) {
+    std::iota(s.source.begin(), s.source.end(), std::size_t(0));
+    s.reps = s.source;
+    return s;
   }
+  // Grouped by (context, type) with a sort, not a hash map of millions of small vectors: the
+  // first of a group (the least number) is its source.
+  struct Entry {
+    std::uint64_t context;
+    std::int32_t type;
+    std::size_t i;
+  };
+  std::vector<Entry> e(n);
+  for (std::size_t i = 0; i < n; ++i) e[i] = {context[i], type[i], i};
+  std::sort(e.begin(), e.end(), [](const Entry& a, const Entry& b) {
+    if (a.context != b.context) return a.context < b.context;
+    if (a.type != b.type) return a.type < b.type;
+    return a.i < b.i;
+  });
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool first = k == 0 || e[k].context != e[k - 1].context || e[k].type != e[k - 1].type;
+    s.source[e[k].i] = first ? e[k].i : s.source[e[k - 1].i];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (s.source[i] == i) s.reps.push_back(i);
   return s;
 }
 

@@ -171,6 +171,17 @@ class Tiles:
             for _, future in pending:
                 future.cancel()
 
+    def _parts(self, polygons, dbu, period, cols, starts):
+        """Each chunk's part of the layer (core.litho_layer_parts): the first few chunks' in a call
+        of their own, so that the workers start while the others' are found (a call indexes the
+        whole layer first: 0.9 s at 10^6 wires, the parts of 708 chunks 5 s)."""
+        first = min(len(starts) - 1, 2 * self._slots())
+        for at in (starts[:first + 1], starts[first:]):
+            if len(at) > 1:
+                a, b = at[0], at[-1]
+                yield from core.litho_layer_parts(polygons, dbu, period, cols[0][a:b], cols[1][a:b],
+                                                  array("q", (s - a for s in at)))
+
     def printability(self, polygons, dbu, cx, cy, x1, y1, x2, y2, types, cd, kernels, threshold, contexts=None,
                      threads=0, defocus=None, dose=0.0, blur=0.0):
         """core.gauge_printability with its windows read on the workers: the same dict, the same
@@ -190,7 +201,6 @@ class Tiles:
         cols = [array("d", core.take_records(c, 8, flat)) for c in (cx, cy, x1, y1, x2, y2, cd)]
         cols.append(array("i", core.take_records(kinds, 4, flat)))
         bounds = list(zip(starts[:-1], starts[1:]))
-        parts = core.litho_layer_parts(polygons, dbu, kernels.period, cols[0], cols[1], starts) if flat else []
         run = uuid.uuid4().hex[:12]
         futures = []
         # The kernels (1.7 MB for euv's two sets) once to every worker, not in every chunk's task:
@@ -199,7 +209,8 @@ class Tiles:
         models = self.client.scatter([states], broadcast=True, hash=False)[0] if bounds else None
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", UserWarning)  # a chunk's part of the layer, as a tile's job
-            for k, ((a, b), (points, rings)) in enumerate(zip(bounds, parts)):
+            for k, ((a, b), (points, rings)) in enumerate(zip(bounds, self._parts(polygons, dbu, kernels.period,
+                                                                                 cols, starts))):
                 part = (array("q", points), array("q", rings))
                 columns = tuple(col[a:b] for col in cols)
                 futures.append(self.client.submit(cluster_task.read_gauges, part, columns, models, threshold, dose,

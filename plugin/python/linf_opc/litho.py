@@ -185,8 +185,11 @@ class LithoColumns:
 def _fits(reals, n, half):
     """1 where the gauge's measurement line fits in the model's window centred on its point."""
     x1, y1, x2, y2, cx, cy = (reals[k:10 * n:10] for k in range(6))
-    return bytearray(max(abs(a - c), abs(b - c), abs(p - d), abs(q - d)) <= half
-                     for a, b, c, p, q, d in zip(x1, x2, cx, y1, y2, cy))
+
+    def off(a, c):  # loops of C: a layer has millions of gauges
+        return map(abs, map(operator.sub, a, c))
+    return bytearray(map(operator.le, map(max, off(x1, cx), off(x2, cx), off(y1, cy), off(y2, cy)),
+                         itertools.repeat(half)))
 
 
 def rescore(result, polygons, dbu_um, model, threads=0):
@@ -217,7 +220,11 @@ def rescore(result, polygons, dbu_um, model, threads=0):
 
     def col(k, width=10, of=None, code="d"):
         v = (reals if of is None else of)[k:width * n:width]
-        return array(code, v) if every else array(code, (v[i] for i in idx))
+        if not every:
+            return array(code, (v[i] for i in idx))
+        a = array(code)
+        a.frombytes(v.tobytes())  # copies of C (an array of a strided view loops in Python)
+        return a
     types = col(12, 13, ints, "i")
     drawn = mask = core_input(polygons)
     opc, S = None, 1
