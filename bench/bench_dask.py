@@ -3,7 +3,7 @@
 # needs: per-tile times on the workers, the submitting host's own share per tile, the bytes
 # moved, the scheduler's overhead per task, and each worker's peak memory.
 #   python3 bench/bench_dask.py [--wires 100000] [--workers 2] [--tile -1] [--overhead-tasks 2000] [--builder sweep]
-#                               [--litho euv [--rounds 3]]
+#                               [--litho euv [--rounds 3]]   (the gauge stage, then the printability)
 # Starts a dask-scheduler and --workers dask-workers (--nthreads 1) on 127.0.0.1 and stops them.
 # Both runs build the gauges (diagram + gauges, as cmd=gauges without its writers) with one
 # thread on the submitting host; the cluster's run must give the same voronoi.csv and gauges.csv
@@ -154,13 +154,24 @@ if LITHO:  # the package's litho reading needs pya: KLayout's standalone modules
 
 
 def litho_bench(polys, n, client):
-    """--litho NAME: the gauges' printability (litho.rescore, as -rd litho=NAME reads it) with one
-    local thread, then with its chunks on the workers (cluster.Tiles.printability), on one gauge
-    stage built beforehand; the same columns, ranks and counts. Prints a JSON line and a row."""
+    """--litho NAME: the gauge stage (gauges.compute, as the flow runs it), then the gauges'
+    printability (litho.rescore, as -rd litho=NAME reads it) on it, each with one local thread and
+    on the workers (the tiles; cluster.Tiles.printability); the same gauges, columns, ranks and
+    counts. Prints a JSON line, the two stages' sum, and a row."""
     import copy
     from linf_opc import core as plugin_core, gauges as gauge_stage, litho
     model = litho.model_of({"litho": LITHO})
+    # The gauge stage as the flow runs it before the reading, locally and on the cluster: with the
+    # reading, the flow's two stages that grow with the layer (the selection and split are small).
+    t0 = time.perf_counter()
     base = gauge_stage.compute(polys, tile=-1, dbu=0.001, threads=1)
+    t_stage_local = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    with plugin_core.tiles_with(cluster.Tiles(client)):
+        on_cluster = gauge_stage.compute(polys, tile=-1, dbu=0.001, threads=1)
+    t_stage_dask = time.perf_counter() - t0
+    stage_same = [c.tobytes() for c in base.gauges.columns()] == [c.tobytes() for c in on_cluster.gauges.columns()]
+    del on_cluster
     model.kernels, model.defocus  # computed beside the gauge stage; waited for here, not timed
 
     def read(tiles=None):
@@ -213,8 +224,12 @@ def litho_bench(polys, n, client):
               "chunk_compute_max_s": max(spans) if spans else 0,
               "cpu_local_s": cpu_local, "cpu_host_s": c1 - c0, "cpu_workers_s": sorted(w1[k] - w0[k] for k in w1),
               "cpu_scheduler_s": s1 - s0, "worker_peak_rss_mb": sorted(v / 1024 for v in peak.values()),
+              "stage_local_seconds": t_stage_local, "stage_dask_seconds": t_stage_dask, "stage_same": stage_same,
+              "flow_speedup": (t_stage_local + t_local) / (t_stage_dask + t_dask),
               "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}
     print(json.dumps(result))
+    print("gauge stage, then the printability: local %.1f + %.1f s, cluster %.1f + %.1f s (same gauges: %s): %.2f×"
+          % (t_stage_local, t_local, t_stage_dask, t_dask, "yes" if stage_same else "NO", result["flow_speedup"]))
     print("| wires | gauges | simulations / line images | chunks | local, 1 thread: best / median | 2 workers x 1 thread: "
           "best / median | speed-up: best / median | "
           "same | chunks on the workers: sum / max | CPU: local / host / workers / scheduler | worker peak RSS |")
