@@ -12,6 +12,7 @@
 
 #include "linf/geometry/site.hpp"
 #include "linf/litho/kernels.hpp"
+#include "linf/util/strided.hpp"
 
 namespace litho_test {
 
@@ -29,6 +30,12 @@ inline bool exists(const std::string& path) {
 inline const linf::litho::Kernels& focus() {
   static const linf::litho::Kernels k = linf::litho::read_kernels(shipped("M1OPC"));
   return k;
+}
+
+// A vector read in place, as the core reads a caller's column.
+template <class T>
+linf::Strided<T> column(const std::vector<T>& v) {
+  return {reinterpret_cast<const char*>(v.data()), std::ptrdiff_t(sizeof(T)), v.size()};
 }
 
 inline linf::Polygon box(linf::Coord x0, linf::Coord y0, linf::Coord x1, linf::Coord y1) {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "litho_fixtures.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,13 +16,9 @@
 
 using namespace linf;
 using namespace linf::litho;
+using litho_test::column;
 
 namespace {
-
-template <class T>
-Strided<T> col(const std::vector<T>& v) {
-  return {reinterpret_cast<const char*>(v.data()), sizeof(T), v.size()};
-}
 
 struct Table {
   std::vector<double> cx, cy;
@@ -49,7 +47,7 @@ Table table(std::size_t n, unsigned seed) {
 
 TEST(Chunks, TheFirstOfEachTypeAndContextSimulates) {
   const Table t = table(5000, 3);
-  const Sources s = sources_of(col(t.type), col(t.context));
+  const Sources s = sources_of(column(t.type), column(t.context));
   ASSERT_EQ(s.source.size(), t.cx.size());
   std::vector<std::size_t> reps;
   for (std::size_t i = 0; i < t.cx.size(); ++i) {
@@ -64,17 +62,17 @@ TEST(Chunks, TheFirstOfEachTypeAndContextSimulates) {
   }
   EXPECT_EQ(s.reps, reps);
   EXPECT_LT(reps.size(), t.cx.size());  // some gauges share a reading
-  const Sources all = sources_of(col(t.type), Strided<std::uint64_t>{});
+  const Sources all = sources_of(column(t.type), Strided<std::uint64_t>{});
   EXPECT_EQ(all.reps.size(), t.cx.size());
-  EXPECT_THROW(sources_of(col(t.type), col(std::vector<std::uint64_t>(3, 0))), std::invalid_argument);
+  EXPECT_THROW(sources_of(column(t.type), column(std::vector<std::uint64_t>(3, 0))), std::invalid_argument);
 }
 
 TEST(Chunks, NearbyPointsTogetherEachPointInOneChunk) {
   for (const std::size_t wanted : {std::size_t(1), std::size_t(8), std::size_t(1000)}) {
     const Table t = table(40000, 7);
     const double band = 4096;
-    const Chunks c = plan_chunks(col(t.cx), col(t.cy), col(t.type), col(t.context), band, wanted);
-    const Sources s = sources_of(col(t.type), col(t.context));
+    const Chunks c = plan_chunks(column(t.cx), column(t.cy), column(t.type), column(t.context), band, wanted);
+    const Sources s = sources_of(column(t.type), column(t.context));
     // Every simulating gauge once.
     std::vector<std::size_t> seen = c.gauges;
     std::sort(seen.begin(), seen.end());
@@ -121,10 +119,10 @@ TEST(Chunks, NearbyPointsTogetherEachPointInOneChunk) {
 
 TEST(Chunks, BadInputIsRefused) {
   const Table t = table(100, 1);
-  EXPECT_THROW(plan_chunks(col(t.cx), col(t.cy), col(t.type), col(t.context), 0, 4), std::invalid_argument);
-  EXPECT_THROW(plan_chunks(col(t.cx), col(std::vector<double>(3)), col(t.type), col(t.context), 100, 4),
+  EXPECT_THROW(plan_chunks(column(t.cx), column(t.cy), column(t.type), column(t.context), 0, 4), std::invalid_argument);
+  EXPECT_THROW(plan_chunks(column(t.cx), column(std::vector<double>(3)), column(t.type), column(t.context), 100, 4),
                std::invalid_argument);
-  const Chunks none = plan_chunks(col(std::vector<double>{}), col(std::vector<double>{}), col(std::vector<std::int32_t>{}),
+  const Chunks none = plan_chunks(column(std::vector<double>{}), column(std::vector<double>{}), column(std::vector<std::int32_t>{}),
                                   Strided<std::uint64_t>{}, 100, 4);
   EXPECT_TRUE(none.gauges.empty());
   EXPECT_EQ(none.starts, std::vector<std::size_t>{0});

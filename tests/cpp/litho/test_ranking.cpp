@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "litho_fixtures.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -12,15 +14,7 @@
 
 using namespace linf;
 using namespace linf::litho;
-
-namespace {
-
-template <class T>
-Strided<T> col(const std::vector<T>& v) {
-  return {reinterpret_cast<const char*>(v.data()), sizeof(T), v.size()};
-}
-
-}  // namespace
+using litho_test::column;
 
 TEST(Ranking, ReadGaugesByScoreThenTheUnreadInTableOrder) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -34,7 +28,7 @@ TEST(Ranking, ReadGaugesByScoreThenTheUnreadInTableOrder) {
     cd.push_back(kind == 0 ? 30 + s : kind == 1 || kind == 2 ? 0 : nan);
     fails.push_back(std::uint8_t(kind == 1 ? 1 : kind == 2 ? 2 : 0));
   }
-  const Ranking r = rank_by_printability(col(score), col(cd), col(fails));
+  const Ranking r = rank_by_printability(column(score), column(cd), column(fails));
   const std::size_t n = score.size();
   ASSERT_EQ(r.order.size(), n);
   ASSERT_EQ(r.score.size(), n);
@@ -66,10 +60,10 @@ TEST(Ranking, NothingReadKeepsTheTableOrderWithScoreOne) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::vector<double> score{nan, 0.4, nan}, cd{nan, nan, nan};
   const std::vector<std::uint8_t> fails{0, 0, 0};
-  const Ranking r = rank_by_printability(col(score), col(cd), col(fails));
+  const Ranking r = rank_by_printability(column(score), column(cd), column(fails));
   EXPECT_EQ(r.order, (std::vector<std::int32_t>{0, 1, 2}));
   EXPECT_EQ(r.score, (std::vector<double>{1, 1, 1}));
   EXPECT_EQ(r.read, 0u);
   EXPECT_EQ(r.highest, 1.0);
-  EXPECT_THROW(rank_by_printability(col(score), col(std::vector<double>{1.0}), col(fails)), std::invalid_argument);
+  EXPECT_THROW(rank_by_printability(column(score), column(std::vector<double>{1.0}), column(fails)), std::invalid_argument);
 }
