@@ -235,9 +235,13 @@ void bind_gauges(py::module_& m) {
       "take_records",
       [](const py::buffer& data, std::size_t size, const py::buffer& index) {
         const py::buffer_info d = data.request();
-        if (d.ndim != 1 || d.strides[0] != d.itemsize) throw py::value_error("take_records: the data must be contiguous");
+        // Contiguous records, or a column read in place (a strided view of single values).
+        const bool column = d.ndim == 1 && d.strides[0] != d.itemsize && std::size_t(d.itemsize) == size;
+        if (d.ndim != 1 || (d.strides[0] != d.itemsize && !column))
+          throw py::value_error("take_records: the data must be contiguous, or a column of single values");
         const std::size_t bytes = std::size_t(d.size) * std::size_t(d.itemsize);
         if (size == 0 || bytes % size != 0) throw py::value_error("take_records: the data is not whole records");
+        const std::ptrdiff_t step = column ? d.strides[0] : std::ptrdiff_t(size);
         const py::buffer_info x = index.request();
         if (x.ndim != 1 || x.itemsize != 8 || (x.format != "q" && x.format != "l"))
           throw py::value_error("take_records: the index must be a one-dimensional buffer of int64, array('q')");
@@ -250,12 +254,13 @@ void bind_gauges(py::module_& m) {
           std::int64_t i;
           std::memcpy(&i, at + std::ptrdiff_t(k) * x.strides[0], sizeof i);
           if (i < 0 || std::size_t(i) >= n) throw py::value_error("take_records: an index names no record");
-          std::memcpy(to + k * size, from + std::size_t(i) * size, size);
+          std::memcpy(to + k * size, from + std::ptrdiff_t(i) * step, size);
         }
         return out;
       },
       py::arg("data"), py::arg("size"), py::arg("index"),
-      "Records picked by number: `data` holds records of `size` bytes, `index` (array('q')) numbers them;\n"
+      "Records picked by number: `data` holds records of `size` bytes (or is a strided column of values of\n"
+      "that size), `index` (array('q')) numbers them;\n"
       "record k of the result is record index[k] (any number of times, or none). A loop of C over columns\n"
       "of millions of gauges. ValueError for data that is not whole records or an index that names none.");
 }

@@ -183,5 +183,28 @@ class GaugeTableColumns(unittest.TestCase):
             core.voronoi_polygons((array("i", box), array("q", [4])))
 
 
+class TakeRecords(unittest.TestCase):
+    """core.take_records, the gathers of the printability on a cluster: record k of the result is
+    record index[k], from whole records or from a strided column of the gauge table."""
+
+    def test_records_and_strided_columns(self):
+        table = gauges.compute(layout(7)).gauges
+        reals, ints = table.columns()
+        n = len(table)
+        index = array("q", [n - 1, 0, 3, 3, n // 2])
+        got = array("d", core.take_records(reals, 80, index))
+        self.assertEqual(got, array("d", [v for i in index for v in reals[10 * i:10 * i + 10]]))
+        for k in (4, 5, 7):  # a column read in place: every tenth double
+            column = reals[k::10]
+            self.assertEqual(array("d", core.take_records(column, 8, index)), array("d", [column[i] for i in index]))
+        kinds = ints[12::13]
+        self.assertEqual(array("i", core.take_records(kinds, 4, index)), array("i", [kinds[i] for i in index]))
+        self.assertEqual(core.take_records(reals, 80, array("q")), b"")
+        with self.assertRaises(ValueError):
+            core.take_records(reals, 80, array("q", [n]))
+        with self.assertRaises(ValueError):
+            core.take_records(reals[4::10], 16, index)  # a strided view is a column of single values
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)
