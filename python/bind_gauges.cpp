@@ -7,6 +7,7 @@
 #include <cstring>
 #include <functional>
 #include <optional>
+#include <string>
 
 #include "bind.hpp"
 #include "convert.hpp"
@@ -58,6 +59,31 @@ py::dict gauge_table(const Sites& sites, Gauges& g, bool with_paths, const std::
   out["file"] = file.empty() ? py::object(py::none()) : py::object(py::str(file));
   out["paths"] = with_paths ? py::object(paths) : py::object(py::none());
   return out;
+}
+
+// The gauge table's records of `size` bytes read in place, for permute_records and
+// take_records: contiguous, or (`column`) also a strided view of single values.
+struct Records {
+  py::buffer_info info;  // held while they are read
+  const char* data = nullptr;
+  std::ptrdiff_t step = 0;
+  std::size_t n = 0;
+  const char* operator[](std::size_t i) const { return data + std::ptrdiff_t(i) * step; }
+};
+
+Records records_of(const py::buffer& b, std::size_t size, bool column, const std::string& who) {
+  Records r{b.request()};
+  const py::buffer_info& d = r.info;
+  const bool strided = d.ndim == 1 && d.strides[0] != d.itemsize && column && std::size_t(d.itemsize) == size;
+  if (d.ndim != 1 || (d.strides[0] != d.itemsize && !strided))
+    throw py::value_error(who + (column ? ": the data must be contiguous, or a column of single values"
+                                        : ": the data must be contiguous"));
+  const std::size_t bytes = std::size_t(d.size) * std::size_t(d.itemsize);
+  if (size == 0 || bytes % size != 0) throw py::value_error(who + ": the data is not whole records");
+  r.data = static_cast<const char*>(d.ptr);
+  r.step = strided ? d.strides[0] : std::ptrdiff_t(size);
+  r.n = bytes / size;
+  return r;
 }
 
 }  // namespace
@@ -206,23 +232,19 @@ void bind_gauges(py::module_& m) {
   m.def(
       "permute_records",
       [](const py::buffer& data, std::size_t size, const py::buffer& order) {
-        const py::buffer_info d = data.request();
-        if (d.ndim != 1 || d.strides[0] != d.itemsize) throw py::value_error("permute_records: the data must be contiguous");
-        const std::size_t bytes = std::size_t(d.size) * std::size_t(d.itemsize);
-        if (size == 0 || bytes % size != 0) throw py::value_error("permute_records: the data is not whole records");
+        const Records r = records_of(data, size, false, "permute_records");
         const Column<std::int32_t> o = column_of<std::int32_t>(order, "order");
-        const std::size_t n = bytes / size;
+        const std::size_t n = r.n;
         if (o.size() != n) throw py::value_error("permute_records: the order must name every record once");
         char* to = nullptr;
-        py::bytes out = blank_bytes(bytes, to);
-        const char* from = static_cast<const char*>(d.ptr);
+        py::bytes out = blank_bytes(n * size, to);
         std::vector<bool> seen(n, false);
         for (std::size_t k = 0; k < n; ++k) {
           const std::int32_t i = o[k];
           if (i < 0 || std::size_t(i) >= n || seen[std::size_t(i)])
             throw py::value_error("permute_records: the order must name every record once");
           seen[std::size_t(i)] = true;
-          std::memcpy(to + k * size, from + std::size_t(i) * size, size);
+          std::memcpy(to + k * size, r[std::size_t(i)], size);
         }
         return out;
       },
@@ -234,27 +256,19 @@ void bind_gauges(py::module_& m) {
   m.def(
       "take_records",
       [](const py::buffer& data, std::size_t size, const py::buffer& index) {
-        const py::buffer_info d = data.request();
-        // Contiguous records, or a column read in place (a strided view of single values).
-        const bool column = d.ndim == 1 && d.strides[0] != d.itemsize && std::size_t(d.itemsize) == size;
-        if (d.ndim != 1 || (d.strides[0] != d.itemsize && !column))
-          throw py::value_error("take_records: the data must be contiguous, or a column of single values");
-        const std::size_t bytes = std::size_t(d.size) * std::size_t(d.itemsize);
-        if (size == 0 || bytes % size != 0) throw py::value_error("take_records: the data is not whole records");
-        const std::ptrdiff_t step = column ? d.strides[0] : std::ptrdiff_t(size);
+        const Records r = records_of(data, size, true, "take_records");
         const py::buffer_info x = index.request();
         if (x.ndim != 1 || x.itemsize != 8 || (x.format != "q" && x.format != "l"))
           throw py::value_error("take_records: the index must be a one-dimensional buffer of int64, array('q')");
-        const std::size_t n = bytes / size, m = std::size_t(x.shape[0]);
+        const std::size_t m = std::size_t(x.shape[0]);
         const char* at = static_cast<const char*>(x.ptr);
         char* to = nullptr;
         py::bytes out = blank_bytes(m * size, to);
-        const char* from = static_cast<const char*>(d.ptr);
         for (std::size_t k = 0; k < m; ++k) {
           std::int64_t i;
           std::memcpy(&i, at + std::ptrdiff_t(k) * x.strides[0], sizeof i);
-          if (i < 0 || std::size_t(i) >= n) throw py::value_error("take_records: an index names no record");
-          std::memcpy(to + k * size, from + std::ptrdiff_t(i) * step, size);
+          if (i < 0 || std::size_t(i) >= r.n) throw py::value_error("take_records: an index names no record");
+          std::memcpy(to + k * size, r[std::size_t(i)], size);
         }
         return out;
       },

@@ -191,15 +191,14 @@ class Tiles:
         import time
         t0 = time.perf_counter()
         n = len(cx)
-        kinds = array("i", types)
         # Who simulates and the chunks (the core's rule, litho_chunks): nearby points together,
         # so that a chunk's part of the layer is small, about four chunks a worker thread.
         band = 64 * max(1.0, kernels.period / dbu)
-        flat, starts, at = (array("q", b) for b in core.litho_chunks(cx, cy, kinds, contexts, band, 4 * self._slots()))
+        flat, starts, at = (array("q", b) for b in core.litho_chunks(cx, cy, types, contexts, band, 4 * self._slots()))
         # The chunks' columns gathered once in chunk order (loops of C: a layer has millions of
         # gauges), then cut.
         cols = [array("d", core.take_records(c, 8, flat)) for c in (cx, cy, x1, y1, x2, y2, cd)]
-        cols.append(array("i", core.take_records(kinds, 4, flat)))
+        cols.append(array("i", core.take_records(types, 4, flat)))
         bounds = list(zip(starts[:-1], starts[1:]))
         run = uuid.uuid4().hex[:12]
         futures = []
