@@ -174,6 +174,25 @@ def litho_bench(polys, n, client):
     del on_cluster
     model.kernels, model.defocus  # computed beside the gauge stage; waited for here, not timed
 
+    # The contexts alone (the reading's first step, at half the model's window), with one local
+    # thread and in chunks on the workers (cluster.Tiles.contexts); the same ids.
+    cx, cy = base.gauges.centres()
+    points = array.array("d", bytes(16 * len(cx)))
+    points[0::2], points[1::2] = array.array("d", cx), array.array("d", cy)
+    radius = model.kernels.period / 2
+    t0 = time.perf_counter()
+    ids_local = core.gauge_contexts(polys, points, radius, 1)
+    t_ctx_local = time.perf_counter() - t0
+    with get_task_stream(client) as ts:
+        t0 = time.perf_counter()
+        ids_dask = cluster.Tiles(client).contexts(polys, points, radius)
+        t_ctx_dask = time.perf_counter() - t0
+    ctx_spans = [(s["stop"] - s["start"]) for t in ts.data if t["key"].startswith("linf-context")
+                 for s in t["startstops"] if s["action"] == "compute"]
+    print("contexts of %d points: local %.2f s, cluster %.2f s (%d chunks, %.2f s on the workers; same: %s)"
+          % (len(cx), t_ctx_local, t_ctx_dask, len(ctx_spans), sum(ctx_spans), ids_local == ids_dask), file=sys.stderr)
+    del points
+
     def read(tiles=None):
         r = copy.copy(base)
         r.seconds = dict(base.seconds)
@@ -224,6 +243,9 @@ def litho_bench(polys, n, client):
               "chunk_compute_max_s": max(spans) if spans else 0,
               "cpu_local_s": cpu_local, "cpu_host_s": c1 - c0, "cpu_workers_s": sorted(w1[k] - w0[k] for k in w1),
               "cpu_scheduler_s": s1 - s0, "worker_peak_rss_mb": sorted(v / 1024 for v in peak.values()),
+              "contexts_local_seconds": t_ctx_local, "contexts_dask_seconds": t_ctx_dask,
+              "contexts_chunks": len(ctx_spans), "contexts_compute_sum_s": sum(ctx_spans),
+              "contexts_same": ids_local == ids_dask,
               "stage_local_seconds": t_stage_local, "stage_dask_seconds": t_stage_dask, "stage_same": stage_same,
               "flow_speedup": (t_stage_local + t_local) / (t_stage_dask + t_dask),
               "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())}

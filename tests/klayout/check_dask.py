@@ -169,6 +169,39 @@ try:
             ok(r, cmd + " on the cluster from plain Python")
             same_files(ref, plain, cmd + " on the cluster from plain Python")
 
+    # The gauges' contexts read on the workers in chunks of nearby points, each with the part of
+    # the layer within its points' squares (cluster.Tiles.contexts): the flow's plan sent them
+    # as tasks, and here the same ids as in this process at radii from 1 DBU to past the rows'
+    # pitch, on points at whole and half DBU; a radius the core refuses gives its error.
+    import array
+    import random
+    import distributed
+    from linf_opc import cluster as dask_runner, core
+    with distributed.Client(address, timeout=30, set_as_default=False) as client:
+        prefixes = client.run_on_scheduler(lambda dask_scheduler: sorted(dask_scheduler.task_prefixes))
+        expect("linf-context" in prefixes, "the flow's contexts ran as tasks (the scheduler saw %s)" % prefixes)
+        polys, _ = wire_rows(60, 40)
+        rng = random.Random(7)
+        points = array.array("d")
+        for _ in range(20000):
+            points.extend((rng.randrange(-200, 28400) + 0.5 * rng.randrange(2),
+                           rng.randrange(-200, 6200) + 0.5 * rng.randrange(2)))
+        tiles = dask_runner.Tiles(client)
+        for radius in (1, 40.5, 300, 2000):
+            here = core.gauge_contexts(polys, points, radius, 1)
+            there = tiles.contexts(polys, points, radius)
+            distinct = len(set(array.array("Q", here)))
+            expect(distinct > 1 and here == there, "contexts of radius %s on the cluster: the same ids as here "
+                   "(%d distinct)" % (radius, distinct))
+        refused = []
+        for contexts in (lambda: core.gauge_contexts(polys, points, 0, 1), lambda: tiles.contexts(polys, points, 0)):
+            try:
+                contexts()
+            except ValueError as e:
+                refused.append(str(e))
+        expect(len(refused) == 2 and refused[0] == refused[1],
+               "a radius of 0 is refused on the cluster as here: %s" % refused)
+
     if arg("litho", "") != "":
         # The gauges' printability read on the workers in chunks, each with the part of the
         # layer its windows see (cluster.Tiles.printability): the same files. One tile, so
@@ -243,6 +276,12 @@ try:
         expect(measured > 0, "the editor's printability points measure something (%d of %d)" % (measured, len(gauges[0])))
         expect(all(here[k] == there[k] for k in ("printed_cd", "fails", "fails_nominal", "pv_band", "score", "images")),
                "the editor's worker process reads the printability on the cluster as this process does")
+        points = array.array("d", (v for xy in zip(gauges[0], gauges[1]) for v in xy))
+        here = core.gauge_contexts(polys, points, 120, 1)
+        with core.running_with(worker.Runner()), core.tiles_at(address):
+            there = core.gauge_contexts(polys, points, 120)
+        expect(len(set(array.array("Q", here))) > 1 and here == there,
+               "the editor's worker process reads the contexts on the cluster as this process does")
         try:
             with core.running_with(worker.Runner()), core.tiles_at("tcp://127.0.0.1:%d" % free_port()):
                 core.voronoi_polygons(polys, threads=1, tile=1000, pieces=False)

@@ -17,6 +17,7 @@ import collections
 from array import array
 import contextlib
 import logging
+import math
 import re
 import socket
 import uuid
@@ -26,6 +27,8 @@ from . import cluster_task, core
 
 CONNECT_SECONDS = 5  # the scheduler's answer; with KLayout's start, one line within 10 s
 WORKERS_SECONDS = 60  # for the first worker to join a scheduler that has none yet
+
+MIN_SIDE = 512  # DBU: the contexts' chunks' windows, at least (Tiles.contexts)
 
 _ADDRESS = re.compile(r"^(tcp|tls)://[^\s:/]+:\d+$")
 
@@ -171,16 +174,62 @@ class Tiles:
             for _, future in pending:
                 future.cancel()
 
-    def _parts(self, polygons, dbu, period, cols, starts):
-        """Each chunk's part of the layer (core.litho_layer_parts): the first few chunks' in a call
-        of their own, so that the workers start while the others' are found (a call indexes the
-        whole layer first: 0.9 s at 10^6 wires, the parts of 708 chunks 5 s)."""
+    def _parts(self, polygons, dbu, period, cx, cy, starts):
+        """Each chunk's part of the layer (core.litho_layer_parts; cx, cy the chunks' points one
+        chunk after the other): the first few chunks' in a call of their own, so that the workers
+        start while the others' are found (a call indexes the whole layer first: 0.9 s at 10^6
+        wires, the parts of 708 chunks 5 s)."""
         first = min(len(starts) - 1, 2 * self._slots())
         for at in (starts[:first + 1], starts[first:]):
             if len(at) > 1:
                 a, b = at[0], at[-1]
-                yield from core.litho_layer_parts(polygons, dbu, period, cols[0][a:b], cols[1][a:b],
+                yield from core.litho_layer_parts(polygons, dbu, period, cx[a:b], cy[a:b],
                                                   array("q", (s - a for s in at)))
+
+    def _read(self, futures, what, rows=None):
+        """The chunks' answers in order, each released once read; those not read yet are
+        cancelled if one fails. rows: (gauges, starts), to name a gauge as locally."""
+        pending = collections.deque(enumerate(futures))
+        try:
+            while pending:
+                k, future = pending[0]
+                yield self._answer(self._gathered(future, "%s of chunk %d" % (what, k)),
+                                   rows and rows[0][rows[1][k]:rows[1][k + 1]])
+                pending.popleft()
+                future.release()
+        finally:
+            for _, future in pending:
+                future.cancel()
+
+    def contexts(self, polygons, points, radius, threads=0):
+        """core.gauge_contexts with its points read on the workers: the same bytes. The points
+        go out in chunks of nearby ones (litho_chunks' rule, every point its own source), each
+        with the part of the layer within its points' squares: an id depends on that alone."""
+        n = len(points) // 2
+        if n == 0:
+            return core.gauge_contexts(polygons, points, radius, threads)
+        xy = memoryview(points).cast("B").cast("d")
+        # The windows one DBU wider than the squares (the core rounds the radius), so that a
+        # polygon that only touches a square is in the part too, and at least MIN_SIDE: the
+        # parts' index has cells of half a window, and a polygon crossing thousands of them made
+        # a radius of 1 DBU take seconds. More of the layer than a square sees changes no id.
+        side = max(2 * (math.ceil(radius) + 1), MIN_SIDE)
+        zeros = array("i", bytes(4 * n))
+        flat, starts, at = (array("q", b) for b in core.litho_chunks(xy[0::2], xy[1::2], zeros, None, 64 * side,
+                                                                     4 * self._slots()))
+        mine = array("d", core.take_records(xy, 16, flat))  # the points, chunk after chunk
+        cx, cy = memoryview(mine)[0::2], memoryview(mine)[1::2]
+        run = uuid.uuid4().hex[:12]
+        futures = []
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # a chunk's part of the layer, as a tile's job
+            for k, (a, b, (shapes, rings)) in enumerate(zip(starts[:-1], starts[1:],
+                                                           self._parts(polygons, 1.0, side, cx, cy, starts))):
+                futures.append(self.client.submit(cluster_task.context_ids, (array("q", shapes), array("q", rings)),
+                                                  mine[2 * a:2 * b], radius, self.threads,
+                                                  key="linf-context-%s-%d" % (run, k), pure=False))
+        ids = b"".join(self._read(futures, "the contexts"))
+        return core.take_records(ids, 8, at)
 
     def printability(self, polygons, dbu, cx, cy, x1, y1, x2, y2, types, cd, kernels, threshold, contexts=None,
                      threads=0, defocus=None, dose=0.0, blur=0.0):
@@ -209,7 +258,7 @@ class Tiles:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", UserWarning)  # a chunk's part of the layer, as a tile's job
             for k, ((a, b), (points, rings)) in enumerate(zip(bounds, self._parts(polygons, dbu, kernels.period,
-                                                                                 cols, starts))):
+                                                                                 cols[0], cols[1], starts))):
                 part = (array("q", points), array("q", rings))
                 columns = tuple(col[a:b] for col in cols)
                 futures.append(self.client.submit(cluster_task.read_gauges, part, columns, models, threshold, dose,
@@ -219,19 +268,12 @@ class Tiles:
         got = {name: array("d") for name in ("printed_cd", "pv_band", "score")}
         got.update(fails=array("B"), fails_nominal=array("B"))
         images = 0
-        pending = collections.deque(zip(range(len(bounds)), bounds, futures))
         try:
-            while pending:
-                k, (a, b), future = pending[0]
-                r = self._answer(self._gathered(future, "the printability of chunk %d" % k), flat[a:b])
+            for r in self._read(futures, "the printability", (flat, starts)):
                 images += r["images"]
                 for name, column in got.items():
                     column.frombytes(r[name])
-                pending.popleft()
-                future.release()
         finally:
-            for _, _, future in pending:  # an error: the chunks not read yet
-                future.cancel()
             if models is not None:
                 models.release()
         # Each gauge takes its source's reading, where the chunks' order put it.

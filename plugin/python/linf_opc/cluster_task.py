@@ -1,5 +1,6 @@
-"""What a Dask worker runs: one tile (build_tile: the core's build_tile_job on the job's bytes)
-or one chunk of the gauges' printability (read_gauges: core.gauge_printability on its part).
+"""What a Dask worker runs: one tile (build_tile: the core's build_tile_job on the job's bytes),
+one chunk of the gauges' printability (read_gauges: core.gauge_printability on its part) or of
+their contexts (context_ids: core.gauge_contexts on its part).
 
 Sent to the workers by value (cluster.py registers this module with cloudpickle), so a worker
 needs only the compiled core (linf_opc_core) on its Python path, not this package; a worker
@@ -81,3 +82,9 @@ def read_gauges(part, columns, models, threshold, dose, blur, dbu, threads):
         return core.gauge_printability(part, dbu, cx, cy, x1, y1, x2, y2, types, cd, made(models[0]), threshold,
                                        None, threads, made(models[1]), dose, blur)
     return _answered(read)
+
+
+def context_ids(part, points, radius, threads):
+    """One chunk of the gauges' context ids: core.gauge_contexts on the part of the layer within
+    the points' squares, answered as _answered (bytes, one id a point)."""
+    return _answered(lambda core: core.gauge_contexts(part, points, radius, threads))

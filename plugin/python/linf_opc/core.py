@@ -15,17 +15,18 @@ _runner = None  # while set: a callable (name, args, kwargs) -> result, running 
 _tiles = None  # while set: the diagram's tiles are built by it (cluster.Tiles), this process only
 _scheduler = None  # while set: the same, for calls run by _runner (the editor's worker process)
 _TILED = ("voronoi_polygons", "gauges_polygons")  # the calls that build the diagram
-_CHUNKED = "gauge_printability"  # windows read in chunks on the cluster (cluster.Tiles.printability)
+# Read in chunks of nearby points on the cluster: the core's call, and cluster.Tiles' method.
+CHUNKED = {"gauge_printability": "printability", "gauge_contexts": "contexts"}
 
 
 def _call(name):
     def call(*args, **kwargs):
         if _runner is not None:
-            if _scheduler is not None and (name == _CHUNKED or name in _TILED and not kwargs.get("pieces")):
+            if _scheduler is not None and (name in CHUNKED or name in _TILED and not kwargs.get("pieces")):
                 kwargs["scheduler"] = _scheduler  # the worker process connects (worker.py)
             return _runner(name, args, kwargs)
-        if _tiles is not None and name == _CHUNKED:
-            return _tiles.printability(*args, **kwargs)
+        if _tiles is not None and name in CHUNKED:
+            return getattr(_tiles, CHUNKED[name])(*args, **kwargs)
         if _tiles is not None and name in _TILED and not kwargs.get("pieces"):
             kwargs["tiles"] = _tiles
         return getattr(_core, name)(*args, **kwargs)

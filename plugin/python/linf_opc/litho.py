@@ -240,7 +240,7 @@ def rescore(result, polygons, dbu_um, model, threads=0):
     # OPC a context's first gauge is read on the corrected layer for all of them: the corrections
     # of one drawn context differ only by the far neighbours' pull (docs/design.md).
     ids = array("Q")
-    ids.frombytes(core.gauge_contexts(drawn, pts, P / 2 / dbu_nm))
+    ids.frombytes(core.gauge_contexts(drawn, pts, P / 2 / dbu_nm, threads))
 
     def on_mask(k):  # a column in the mask's units
         return col(k) if S == 1 else array("d", (v * S for v in col(k)))

@@ -52,10 +52,11 @@ if told:  # the core's steps for the parent's bar: one fixed-size record, rewrit
 try:
     if scheduler:  # the tiles on a Dask cluster (cluster.py): this process is its client
         from linf_opc import cluster
+        from linf_opc.core import CHUNKED
         try:
             tiles = cluster.Tiles(cluster.connect(scheduler))
-            if name == "gauge_printability":  # its windows in chunks on the workers
-                result = ("ok", tiles.printability(*args, **kwargs))
+            if name in CHUNKED:  # its points in chunks on the workers
+                result = ("ok", getattr(tiles, CHUNKED[name])(*args, **kwargs))
             else:
                 kwargs["tiles"] = tiles
                 result = ("ok", getattr(core, name)(*args, **kwargs))
