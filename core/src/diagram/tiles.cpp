@@ -230,7 +230,7 @@ class Plan {
   // each border point q (f: the distance to the nearest site) are enough. The border is walked
   // in steps of length l from sample points c: over a step f <= f(c) + l (f is 1-Lipschitz), so
   // the sites within f(c) + l of the step are taken. A square there reaches at most l beyond
-  // the nearest site: l = f(c) / 32 (or a 2048th of the frame) keeps that slack small, where a
+  // the nearest site: l = f(c) / 32 (or a 256th of the frame) keeps that slack small, where a
   // border far from every site would otherwise take rows of sites behind the nearest. The
   // next sample's nearest site is among a step's catch.
   // Every segment's end sites are added (the sweep takes a segment with them). Tighter than
@@ -266,7 +266,10 @@ class Plan {
       for (int t : h) take(t);
     }
     const double side = std::max(F.x2 - F.x1, F.y2 - F.y1);
-    const double floor_step = std::max(1.0, side / 2048);  // at most 4 x 2048 samples a tile
+    // At most 4 x 256 samples a tile: a step of a 256th of the side takes at most that much
+    // more of the border's band, about 4 x N / 256 sites of a tile of N (0.7% more on 10^6
+    // wires), and the walk took a sixth of the one-thread build with 2048 (docs/benchmarks.md).
+    const double floor_step = std::max(1.0, side / 256);
     for (int e = 0; e < 4; ++e) {
       const bool horizontal = e < 2;  // y = y1, y = y2, x = x1, x = x2
       const double at = e == 0 ? F.y1 : e == 1 ? F.y2 : e == 2 ? F.x1 : F.x2;
