@@ -1,18 +1,19 @@
-"""The diagram's tiles and the gauges' printability on a Dask cluster (-rd scheduler=tcp://HOST:PORT).
+"""The diagram's tiles, the gauges' contexts and their printability on a Dask cluster
+(-rd scheduler=tcp://HOST:PORT).
 
 in:  the scheduler's address; the core's tile jobs (bytes: one tile's sites and halo, never the
-     layer's), taken one at a time while the core plans the tiles; with -rd litho, the gauges'
-     printability columns (core.gauge_printability's arguments)
+     layer's), taken one at a time while the core plans the tiles; core.gauge_contexts'
+     arguments; with -rd litho, the gauges' printability columns (core.gauge_printability's)
 out: each job's result bytes, handed back to the core in the order the jobs were taken; the
      core then classifies, merges, checks and writes exactly as in a local run (same files).
-     The printability's dict, as core.gauge_printability gives it (same bytes).
+     The contexts' bytes and the printability's dict, as the core gives them (same bytes).
 
-Tiles.printability sends the gauges that simulate in chunks of nearby points, each with the part
-of the layer its windows see (core.litho_layer_parts): the reading of a window depends on those
-shapes alone. Everything else (the far field, the merge, the check, the gauges, the contexts,
-the writers, every later stage) runs here. A lost worker's tasks are rerun by Dask on the
-others. Errors a user can meet are ClusterError (one line, exit code 2, as a UsageError), raised
-before anything is written when the scheduler cannot be reached."""
+Tiles.contexts and Tiles.printability send their points in chunks of nearby ones, each with the
+part of the layer its squares or windows see (core.litho_layer_parts): an id and a window's
+reading depend on those shapes alone. Everything else (the far field, the merge, the check, the
+gauges, the writers, every later stage) runs here. A lost worker's tasks are rerun by Dask on
+the others. Errors a user can meet are ClusterError (one line, exit code 2, as a UsageError),
+raised before anything is written when the scheduler cannot be reached."""
 import collections
 from array import array
 import contextlib
