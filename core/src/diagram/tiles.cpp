@@ -268,7 +268,7 @@ class Plan {
     const double side = std::max(F.x2 - F.x1, F.y2 - F.y1);
     // At most 4 x 256 samples a tile: a step of a 256th of the side takes at most that much
     // more of the border's band, about 4 x N / 256 sites of a tile of N (0.7% more on 10^6
-    // wires), and the walk took a sixth of the one-thread build with 2048 (docs/benchmarks.md).
+    // wires), and the walk took a sixth of the one-thread build with 2048 (docs/design.md).
     const double floor_step = std::max(1.0, side / 256);
     for (int e = 0; e < 4; ++e) {
       const bool horizontal = e < 2;  // y = y1, y = y2, x = x1, x = x2
