@@ -3,11 +3,15 @@
 # needs: per-tile times on the workers, the submitting host's own share per tile, the bytes
 # moved, the scheduler's overhead per task, and each worker's peak memory.
 #   python3 bench/bench_dask.py [--wires 100000] [--workers 2] [--tile -1] [--overhead-tasks 2000] [--builder sweep]
+#                               [--flow] [--host-threads 1]
 #                               [--litho euv [--rounds 3]]   (the gauge stage, then the printability)
+# --flow: the gauge stage as the flow runs it (no voronoi.csv or gauges.csv: the runs compare the
+# gauge columns); --host-threads: the submitting host's own threads in the cluster's run (the
+# stages after the tiles), the workers and the local run keep one.
 # Starts a dask-scheduler and --workers dask-workers (--nthreads 1) on 127.0.0.1 and stops them.
 # Both runs build the gauges (diagram + gauges, as cmd=gauges without its writers) with one
 # thread on the submitting host; the cluster's run must give the same voronoi.csv and gauges.csv
-# bytes. Prints a JSON line and a Markdown table.
+# bytes. Prints a JSON line, a Markdown table and each run's stages (the core's progress).
 import array
 import json
 import os
@@ -62,11 +66,40 @@ def free_port():
     return p
 
 
+FLOW = "--flow" in args  # the gauge stage as the flow runs it: no voronoi.csv, no gauges.csv
+HOST_THREADS = int(opt("--host-threads", "1"))  # the submitting host's own threads (the workers keep one)
+
+
+class Stages:
+    """The core's progress stages of one run, timed: where the serial part of a cluster's run is."""
+
+    def __init__(self):
+        self.marks = []
+
+    def __call__(self, name, done, total):
+        if not self.marks or self.marks[-1][0] != name:
+            self.marks.append((name, time.perf_counter()))
+
+    def seconds(self, end):
+        ends = [t for _, t in self.marks[1:]] + [end]
+        out = {}
+        for (name, t), e in zip(self.marks, ends):
+            out[name] = out.get(name, 0.0) + e - t
+        return out
+
+
 def build(polys, out, tiles=None):
+    """The gauge stage with one thread (cluster: the host's HOST_THREADS); the files the runs
+    compare: voronoi.csv and gauges.csv, or with --flow the gauge columns (as the flow keeps them)."""
+    stages = Stages()
+    files = ({"columns": os.path.join(out, "gauges.columns")} if FLOW else
+             {"csv": os.path.join(out, "voronoi.csv"), "gauges_csv": os.path.join(out, "gauges.csv")})
     t0 = time.perf_counter()
-    r = core.gauges_polygons(polys, True, 2000, 1, tile=tile, csv=os.path.join(out, "voronoi.csv"), dbu=0.001,
-                             gauges_csv=os.path.join(out, "gauges.csv"), tiles=tiles, builder=BUILDER)
-    return r, time.perf_counter() - t0
+    r = core.gauges_polygons(polys, True, 2000, 1 if tiles is None else HOST_THREADS, tile=tile, dbu=0.001,
+                             tiles=tiles, builder=BUILDER, progress=stages, **files)
+    end = time.perf_counter()
+    r["stages"] = stages.seconds(end)
+    return r, end - t0
 
 
 def cpu_seconds():
@@ -333,8 +366,10 @@ try:
         "tiles": d_dask["tiles"], "jobs": tiles.jobs,
         "local_seconds": t_local, "local_runs_seconds": [t_local_first, t_local_after], "dask_seconds": t_dask, "speedup": t_local / t_dask,
         "local_build_seconds": d_local["seconds"]["build"], "dask_build_seconds": d_dask["seconds"]["build"],
-        "same_voronoi_csv": same(local_dir, dask_dir, "voronoi.csv"),
-        "same_gauges_csv": same(local_dir, dask_dir, "gauges.csv"),
+        "as_flow": FLOW, "host_threads": HOST_THREADS,
+        "same_files": all(same(local_dir, dask_dir, f) for f in (["gauges.columns"] if FLOW else
+                                                                  ["voronoi.csv", "gauges.csv"])),
+        "local_stages_s": r_local["stages"], "dask_stages_s": r_dask["stages"],
         "tile_compute_sum_s": sum(spans), "tile_compute_max_s": max(spans) if spans else 0,
         "tile_compute_mean_s": sum(spans) / len(spans) if spans else 0,
         "host_next_s": tiles.next_s, "host_done_s": tiles.done_s, "tile_phase_s": tiles.phase_s,
@@ -351,14 +386,15 @@ try:
     result["projection"] = project(result, d_dask["tiles"]["tiles"])
     print(json.dumps(result))
     print("builder: local %s, cluster %s" % (r_local["diagram"]["builder"], d_dask["builder"]))
-    print("| wires | sites | tiles | local, 1 thread | 2 workers x 1 thread + host 1 thread | speed-up | same files | "
+    print(("| wires | sites | tiles | local, 1 thread | %d workers x 1 thread + host %d thread%s | speed-up | same files | "
+           % (n_workers, HOST_THREADS, "" if HOST_THREADS == 1 else "s")) +
           "tile compute sum / mean / max | host per tile (plan+gather / classify+spill) | host after tiles | "
           "sent / received | task overhead (batch / round trip) | worker peak RSS |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     print("| %d | %d | %d | %.1f s | %.1f s | %.2f× | %s | %.1f / %.3f / %.3f s | %.1f / %.1f ms | %.1f s | "
           "%.1f / %.1f MB | %.2f / %.2f ms | %s MB |"
           % (n, d_local["sites"], d_dask["tiles"]["tiles"], t_local, t_dask, t_local / t_dask,
-             "yes" if result["same_voronoi_csv"] and result["same_gauges_csv"] else "NO",
+             "yes" if result["same_files"] else "NO",
              result["tile_compute_sum_s"], result["tile_compute_mean_s"], result["tile_compute_max_s"],
              1000 * tiles.next_s / max(1, tiles.jobs), 1000 * tiles.done_s / max(1, tiles.jobs),
              result["host_after_tiles_s"], tiles.sent / 1e6, tiles.received / 1e6,
@@ -367,6 +403,12 @@ try:
     print("CPU time: local run %.2f s; cluster run: host %.2f s, workers %s s, scheduler %.2f s"
           % (cpu_local, result["cpu_host_s"], " + ".join("%.2f" % v for v in result["cpu_workers_s"]),
              result["cpu_scheduler_s"]))
+    print("| stage (the core's progress) | local, 1 thread | cluster, host %d thread%s |"
+          % (HOST_THREADS, "" if HOST_THREADS == 1 else "s"))
+    print("|---|---|---|")
+    for name in list(dict.fromkeys(list(r_dask["stages"]) + list(r_local["stages"]))):
+        print("| %s | %s | %s |" % (name, *("%.1f s" % st[name] if name in st else "-"
+                                            for st in (r_local["stages"], r_dask["stages"]))))
     pr = result["projection"]
     print("projection to %.0e wires (%d tiles): one thread %.0f s; 64 workers %.0f s; 256 workers %.0f s; host serial "
           "%.0f s, host per-tile work %.0f s, scheduler %.0f s, network %.0f s"
