@@ -6,6 +6,7 @@
 #include "convert.hpp"
 #include "linf/diagram/diagram.hpp"
 #include "linf/pipeline/stream.hpp"
+#include "linf/pipeline/tile_task.hpp"
 #include "linf/pipeline/whole.hpp"
 
 namespace linf::bind {
@@ -71,13 +72,14 @@ void bind_diagram(py::module_& m) {
         std::string out;
         {
           py::gil_scoped_release unlocked;
-          out = build_tile_job(in, threads);
+          out = run_tile_job(in, threads);
         }
         return py::bytes(out);
       },
       py::arg("job"), py::arg("threads") = 1,
       "One tile job's result bytes from its bytes (see voronoi_polygons' tiles), with `threads` builder workers\n"
-      "(0: one a core); the same bytes on every host. ValueError for bytes that are not a job of this core.");
+      "(0: one a core); the same bytes on every host. Where the job asks (gauges_polygons' sweep tiles), its pieces\n"
+      "are also classified and read for the gauges' stretches here. ValueError for bytes that are not a job of this core.");
 
   m.def(
       "voronoi_sites",

@@ -127,6 +127,7 @@ void bind_gauges(py::module_& m) {
         } else {
           // The pieces stream past the writers and into the stretches: never all in memory.
           files.keep = measurable_pair;
+          files.keep_measurable = true;
           StreamResult r;
           {
             py::gil_scoped_release unlocked;

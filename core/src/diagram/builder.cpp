@@ -77,18 +77,21 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
 void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
                  const PartSink& sink, const TileRunner& runner, const ProgressFn& progress) {
   build_parts(sites, clip, opt, stats, PartPrepare{},
-              [&](std::vector<Piece>& part, const Box& frame, std::any&) { sink(part, frame); }, runner, progress);
+              [&](std::vector<Piece>& part, const Box& frame, std::any&) { sink(part, frame); }, runner, progress, 0);
 }
 
 void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
                  const PartPrepare& prepare, const PreparedSink& prepared_sink, const TileRunner& runner,
-                 const ProgressFn& progress) {
-  // Where a part is not prepared on the thread that built it, it is prepared here.
-  const PartSink sink = [&](std::vector<Piece>& part, const Box& frame) {
+                 const ProgressFn& progress, std::uint32_t remote) {
+  // Where a part is not prepared on the thread that built it, it is prepared here, unless the
+  // tile's task prepared it (`done`: its bytes, handed on as a std::string).
+  auto deliver = [&](std::vector<Piece>& part, const Box& frame, std::string* done) {
     std::any prepared;
-    if (prepare) prepared = prepare(part, frame);
+    if (done && !done->empty()) prepared = std::move(*done);
+    else if (prepare) prepared = prepare(part, frame);
     prepared_sink(part, frame, prepared);
   };
+  const PartSink sink = [&](std::vector<Piece>& part, const Box& frame) { deliver(part, frame, nullptr); };
   if (sites.sites.size() < 2) return;
   Coord ox1 = INT64_MAX, oy1 = INT64_MAX, ox2 = INT64_MIN, oy2 = INT64_MIN;
   for (const Site& t : sites.sites) {
@@ -151,14 +154,18 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
     }
   };
   const Vec2 o{double(origin.x), double(origin.y)};
-  const PartSink inner_sink = [&](std::vector<Piece>& part, const Box& frame) {
+  const JobSink inner_job = [&](std::vector<Piece>& part, const Box& frame, std::string& done) {
     note_border(part, {0, 0});
     to_layout(part, origin);
-    sink(part, shifted(frame, o.x, o.y));
+    deliver(part, shifted(frame, o.x, o.y), &done);
   };
-  const PartSink swept_sink = [&](std::vector<Piece>& part, const Box& frame) {
+  const JobSink swept_job = [&](std::vector<Piece>& part, const Box& frame, std::string& done) {
     note_border(part, o);
-    sink(part, frame);
+    deliver(part, frame, &done);
+  };
+  const PartSink inner_sink = [&](std::vector<Piece>& part, const Box& frame) {
+    std::string none;
+    inner_job(part, frame, none);
   };
   if (sweep && !runner) {
     // The far field is swept beside the tiles, from its own walk along the inner box's border
@@ -171,7 +178,10 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
     return;
   }
   // The tiles here or by the runner (same parts, same order); the far field is built here.
-  if (runner) build_tiled_jobs(sites.sites, origin, inner, opt, tau, st, sweep ? swept_sink : inner_sink, runner, progress);
+  // A task prepares a sweep's tile only: its pieces come in layout coordinates, as the sink
+  // takes them (the subdivision's are shifted here first).
+  if (runner) build_tiled_jobs(sites.sites, origin, inner, opt, tau, st, sweep ? swept_job : inner_job, runner, progress,
+                               sweep ? remote : 0);
   else build_tiled(sites.sites, origin, inner, opt, tau, st, inner_sink, progress);
   // The border's owners, and the sites L-inf-tied with them there (far_field.hpp).
   std::vector<int> near = far_field_sites(sites.sites, origin, inner, marks);

@@ -16,8 +16,8 @@ namespace {
 
 // Format tags; the header also holds the structs' sizes, so that a job made by another build
 // of the core is refused by name rather than misread.
-constexpr char kJobTag[8] = {'L', 'I', 'N', 'F', 'J', 'O', 'B', '1'};
-constexpr char kResultTag[8] = {'L', 'I', 'N', 'F', 'R', 'E', 'S', '1'};
+constexpr char kJobTag[8] = {'L', 'I', 'N', 'F', 'J', 'O', 'B', '2'};
+constexpr char kResultTag[8] = {'L', 'I', 'N', 'F', 'R', 'E', 'S', '2'};
 
 struct Header {
   char tag[8] = {};
@@ -109,6 +109,9 @@ std::string encode_job(const TileJob& job) {
   for (const auto& h : job.halos) sizes.push_back(std::uint32_t(h.size())), flat.insert(flat.end(), h.begin(), h.end());
   w.put_all(sizes.data(), sizes.size());
   w.put_all(flat.data(), flat.size());
+  w.put(job.prepare);
+  w.put_all(job.near_ids.data(), job.near_ids.size());
+  w.put_all(job.near.data(), job.near.size());
   return std::move(w.out);
 }
 
@@ -126,8 +129,11 @@ TileJob decode_job(const std::string& bytes) {
   job.tasks = r.get_all<Box>();
   const std::vector<std::uint32_t> sizes = r.get_all<std::uint32_t>();
   const std::vector<int> flat = r.get_all<int>();
+  job.prepare = r.get<std::uint32_t>();
+  job.near_ids = r.get_all<int>();
+  job.near = r.get_all<Site>();
   r.done();
-  if (job.sites.size() != job.ids.size() || sizes.size() != job.tasks.size())
+  if (job.sites.size() != job.ids.size() || sizes.size() != job.tasks.size() || job.near.size() != job.near_ids.size())
     throw std::invalid_argument("a tile job's parts do not agree");
   std::size_t at = 0;
   for (std::uint32_t n : sizes) {
@@ -147,6 +153,7 @@ std::string encode_result(const TileResult& res) {
   w.put(res.frame);
   w.put(res.stats);
   w.put_all(res.pieces.data(), res.pieces.size());
+  w.put_all(res.prepared.data(), res.prepared.size());
   return std::move(w.out);
 }
 
@@ -157,6 +164,8 @@ TileResult decode_result(const std::string& bytes) {
   res.frame = r.get<Box>();
   res.stats = r.get<BuildStats>();
   res.pieces = r.get_all<Piece>();
+  const std::vector<char> prepared = r.get_all<char>();
+  res.prepared.assign(prepared.begin(), prepared.end());
   r.done();
   return res;
 }

@@ -539,8 +539,8 @@ void sweep_tiled(const SiteList& sites, const Point& origin, const Box& root, co
 }
 
 void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt,
-                      double tau, BuildStats& st, const PartSink& sink, const TileRunner& runner,
-                      const ProgressFn& progress) {
+                      double tau, BuildStats& st, const JobSink& sink, const TileRunner& runner,
+                      const ProgressFn& progress, std::uint32_t prepare) {
   // The sweep's tiles as sweep_tiled gathers them (its finer plan, a frame in layout
   // coordinates, no tasks); the subdivision's with their tasks and halos.
   const bool sweep = opt.sweep;
@@ -568,6 +568,18 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
         for (std::size_t k = 0; k < plan.per * plan.per; ++k) job.tasks.push_back(plan.tasks[plan.task_of(tj, ti, k)]);
       job.halos = std::move(halo);
       halo.clear();
+      job.prepare = prepare;
+      if (prepare) {
+        for (int t : job.ids) {
+          const Site& v = sites[t];
+          if (!v.is_point()) continue;
+          for (std::int32_t k : {v.end0, v.end1})
+            if (k >= 0 && !std::binary_search(job.ids.begin(), job.ids.end(), k)) job.near_ids.push_back(k);
+        }
+        std::sort(job.near_ids.begin(), job.near_ids.end());
+        job.near_ids.erase(std::unique(job.near_ids.begin(), job.near_ids.end()), job.near_ids.end());
+        for (int t : job.near_ids) job.near.push_back(sites[t]);
+      }
       bytes = encode_job(job);
       return true;
     }
@@ -588,7 +600,7 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
     st.tasks += sweep ? plan.per * plan.per : r.stats.tasks;  // as sweep_tiled counts them
     st.largest_tile_sites = std::max(st.largest_tile_sites, r.stats.largest_tile_sites);
     add_work(work, r.stats);
-    sink(r.pieces, r.frame);
+    sink(r.pieces, r.frame, r.prepared);
   };
   runner(counted_next, done);
   // A runner that stops early would leave tiles out: never a partial diagram.

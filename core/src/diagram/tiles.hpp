@@ -12,6 +12,10 @@
 #include <vector>
 
 #include "util/parallel.hpp"
+#include <cstdint>
+#include <functional>
+#include <string>
+
 #include "subdivision.hpp"
 
 namespace linf::detail {
@@ -24,9 +28,12 @@ void build_tiled(const SiteList& sites, const Point& origin, const Box& root, co
 
 // The same parts in the same order, each tile built by `runner` from a job (tile_jobs.hpp)
 // holding only the tile's sites: planned and gathered here, built wherever the runner sends it.
+// `prepare` (0: none) goes into every job, with its point sites' ring neighbours; the sink gets
+// each result's preparation bytes with its part (empty where the task prepared nothing).
+using JobSink = std::function<void(std::vector<Piece>& part, const Box& frame, std::string& prepared)>;
 void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& root, const BuildOptions& opt,
-                      double tau, BuildStats& st, const PartSink& sink, const TileRunner& runner,
-                      const ProgressFn& progress = {});
+                      double tau, BuildStats& st, const JobSink& sink, const TileRunner& runner,
+                      const ProgressFn& progress = {}, std::uint32_t prepare = 0);
 
 // The same tiles built by the sweep-line builder (opt.sweep): a tile's sites, the union of its
 // tasks' halos and every segment's end sites, swept at once and cut to the tile's frame; as

@@ -8,9 +8,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -257,6 +260,53 @@ std::shared_ptr<const StretchStream::Reading> StretchStream::read(const std::vec
     }
     g0 = g1;
   }
+  return r;
+}
+
+namespace {
+
+template <class T>
+void put_all(std::string& out, const std::vector<T>& v) {
+  const std::uint64_t n = v.size();
+  out.append(reinterpret_cast<const char*>(&n), sizeof n);
+  out.append(reinterpret_cast<const char*>(v.data()), n * sizeof(T));
+}
+
+template <class T>
+std::vector<T> get_all(const std::string& in, std::size_t& at) {
+  std::uint64_t n = 0;
+  if (in.size() - at < sizeof n) throw std::invalid_argument("a tile's stretch reading is truncated");
+  std::memcpy(&n, in.data() + at, sizeof n);
+  at += sizeof n;
+  if (n > (in.size() - at) / sizeof(T)) throw std::invalid_argument("a tile's stretch reading is truncated");
+  std::vector<T> v(n);
+  if (n) std::memcpy(static_cast<void*>(v.data()), in.data() + at, n * sizeof(T));
+  at += n * sizeof(T);
+  return v;
+}
+
+}  // namespace
+
+std::string StretchStream::read_bytes(const std::vector<Piece>& part, const Box& frame,
+                                      const std::vector<int>& global) const {
+  const std::shared_ptr<const Reading> r = read(part, frame);
+  std::vector<PointStretch> points = r->points;
+  std::vector<Held> held = r->held;
+  const auto to = [&](std::int32_t& id) { id = global.at(std::size_t(id)); };
+  for (PointStretch& p : points) to(p.a), to(p.b);
+  for (Held& h : held) to(h.end.a), to(h.end.b);
+  std::string out;
+  put_all(out, points);
+  put_all(out, held);
+  return out;
+}
+
+std::shared_ptr<const StretchStream::Reading> StretchStream::reading(const std::string& bytes) {
+  auto r = std::make_shared<Reading>();
+  std::size_t at = 0;
+  r->points = get_all<PointStretch>(bytes, at);
+  r->held = get_all<Held>(bytes, at);
+  if (at != bytes.size()) throw std::invalid_argument("a tile's stretch reading is malformed");
   return r;
 }
 

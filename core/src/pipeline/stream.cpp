@@ -25,6 +25,7 @@
 #include "linf/diagram/classify.hpp"
 #include "linf/diagram/sweep.hpp"
 #include "linf/io/csv.hpp"
+#include "linf/pipeline/tile_task.hpp"
 #include "linf/geometry/sites.hpp"
 #include "util/parallel.hpp"
 #include "util/progress_meter.hpp"
@@ -259,14 +260,19 @@ StreamResult stream_voronoi(const FlatPolygons& polygons, const DiagramOptions& 
     for (std::size_t i = 0; i < part.size(); i += 1 + part.size() / 64) clear.push_back(part[i].d1);
     if (stretches) {
       const auto t = std::chrono::steady_clock::now();
-      stretches->add(*std::any_cast<Reading&>(prepared));
+      // Prepared by the tile's task (run_tile_job): its bytes; else by `prepare`.
+      if (const std::string* bytes = std::any_cast<std::string>(&prepared))
+        stretches->add(*StretchStream::reading(*bytes));
+      else
+        stretches->add(*std::any_cast<Reading&>(prepared));
       t_stretches += since(t);
     }
     runs.add(part);
   };
   BuildOptions build = opt.build;
   build.sweep = d.swept = opt.sweep && sweep_handles(d.sites);  // a cluster's tiles too (tile_jobs.hpp)
-  build_parts(d.sites, d.clip, build, &st, prepare, take, tiles, opt.progress);
+  build_parts(d.sites, d.clip, build, &st, prepare, take, tiles, opt.progress,
+              stretches && out.keep_measurable ? kGaugeReadings : 0);
   d.seconds_build = since(t0) - t_stretches;
   d.tiles = st.tiles, d.tile_tasks = st.tasks, d.largest_tile_sites = st.largest_tile_sites;
 

@@ -4,8 +4,9 @@
 in:  the scheduler's address; the core's tile jobs (bytes: one tile's sites and halo, never the
      layer's), taken one at a time while the core plans the tiles; core.gauge_contexts'
      arguments; with -rd litho, the gauges' printability columns (core.gauge_printability's)
-out: each job's result bytes, handed back to the core in the order the jobs were taken; the
-     core then classifies, merges, checks and writes exactly as in a local run (same files).
+out: each job's result bytes (the tile's pieces, classified and read for the gauges' stretches
+     on the worker when the gauge stage asks), handed back to the core in the order the jobs
+     were taken; the core then merges, checks and writes exactly as in a local run (same files).
      The contexts' bytes and the printability's dict, as the core gives them (same bytes).
 
 Tiles.contexts and Tiles.printability send their points in chunks of nearby ones, each with the

@@ -1,7 +1,9 @@
 // Tile jobs (tile_jobs.hpp, tiles.hpp build_tiled_jobs): the tiled pass planned here, each tile
 // built alone from its job's bytes (as on another host), gives the local pass's parts bit for
 // bit and in the same order, and the stream fed from them writes the same bytes; a job holds
-// only its tile's sites; malformed bytes and a runner that drops tiles are refused.
+// only its tile's sites; malformed bytes and a runner that drops tiles are refused. A sweep's
+// tile task that classifies its pieces and reads their vertices (run_tile_job) gives the host's
+// stretches bit for bit.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -18,6 +20,7 @@
 #include "linf/gauges/gauge.hpp"
 #include "linf/geometry/sites.hpp"
 #include "linf/pipeline/stream.hpp"
+#include "linf/pipeline/tile_task.hpp"
 #include "layouts.hpp"
 
 using namespace linf;
@@ -46,16 +49,22 @@ std::vector<std::string> parts(const Sites& s, const Box& clip, const BuildOptio
 }
 
 // Builds every job here, as a worker would from the bytes alone, with `threads` workers; keeps
-// the jobs seen.
+// the jobs seen. task: as the cluster's workers do (run_tile_job: the job's preparation too),
+// else the diagram's build_tile_job alone; `prepared` counts the results that carried one.
 struct Inline {
   int threads = 1;
   std::vector<std::string> jobs;
+  bool task = false;
+  std::size_t prepared = 0;
   TileRunner runner() {
     return [this](const std::function<bool(std::string&)>& next, const std::function<void(const std::string&)>& done) {
       std::string job;
       while (next(job)) {
         jobs.push_back(job);
-        done(build_tile_job(std::string(job), threads));  // a copy: nothing shared with the planner
+        const std::string copy(job);  // nothing shared with the planner
+        const std::string result = task ? run_tile_job(copy, threads) : build_tile_job(copy, threads);
+        prepared += !detail::decode_result(result).prepared.empty();
+        done(result);
       }
     };
   }
@@ -158,11 +167,13 @@ TEST(TileJobs, StreamFedByJobsWritesTheSameBytes) {
   o.sweep = sweep;
   o.build.threads = 2;
   o.build.tile_size = 150;
-  auto run = [&](const TileRunner& runner, const std::string& name, std::string& csv, std::string& gds) {
+  auto run = [&](const TileRunner& runner, const std::string& name, std::string& csv, std::string& gds,
+                 bool on_tasks = false) {
     StreamOutputs so;
     so.csv = tmp(name + ".csv"), so.gds = tmp(name + ".gds"), so.dbu = 0.001;
     so.layers.layer = 7, so.layers.dbu = 0.001;
     so.keep = measurable_pair;
+    so.keep_measurable = on_tasks;
     StreamResult r = stream_voronoi(polys, o, so, runner);
     EXPECT_TRUE(r.check.ok());
     csv = slurp(so.csv), gds = slurp(so.gds);
@@ -170,27 +181,40 @@ TEST(TileJobs, StreamFedByJobsWritesTheSameBytes) {
     std::remove(so.gds.c_str());
     return r;
   };
-  std::string csv_local, gds_local, csv_jobs, gds_jobs;
+  std::string csv_local, gds_local;
   const StreamResult local = run({}, "local", csv_local, gds_local);
-  Inline jobs{1, {}};
-  const StreamResult got = run(jobs.runner(), "jobs", csv_jobs, gds_jobs);
-  ASSERT_GT(jobs.jobs.size(), 1u);
   ASSERT_GT(local.pieces, 1000u);
-  EXPECT_EQ(got.pieces, local.pieces);
-  EXPECT_EQ(got.counts, local.counts);
-  EXPECT_EQ(got.diagram.tiles, local.diagram.tiles);
-  EXPECT_TRUE(csv_jobs == csv_local) << "voronoi.csv differs";
-  EXPECT_TRUE(gds_jobs == gds_local) << "the drawing differs";
-  ASSERT_EQ(got.stretches.size(), local.stretches.size());
-  for (std::size_t i = 0; i < got.stretches.size(); ++i) {
-    const Stretch a = got.stretches[i], b = local.stretches[i];
-    ASSERT_EQ(a.a, b.a);
-    ASSERT_EQ(a.b, b.b);
-    ASSERT_EQ(a.length, b.length);
-    ASSERT_EQ(a.path.size(), b.path.size());
-  }
-  EXPECT_EQ(got.diagram.swept, sweep);
   EXPECT_EQ(local.diagram.swept, sweep);
+  // The jobs prepared here; asked to prepare but built by the diagram alone (prepared here all
+  // the same); prepared by their tasks (the sweep's only: the subdivision's are prepared here).
+  for (const auto& [task, ask] : {std::pair{false, false}, std::pair{false, true}, std::pair{true, true}}) {
+    SCOPED_TRACE(std::string(task ? "tasks" : "build_tile_job") + (ask ? ", asked to prepare" : ""));
+    std::string csv_jobs, gds_jobs;
+    Inline jobs{1, {}, task};
+    const StreamResult got = run(jobs.runner(), "jobs", csv_jobs, gds_jobs, ask);
+    ASSERT_GT(jobs.jobs.size(), 1u);
+    EXPECT_EQ(jobs.prepared, task && sweep ? jobs.jobs.size() : 0u);
+    EXPECT_EQ(got.pieces, local.pieces);
+    EXPECT_EQ(got.counts, local.counts);
+    EXPECT_EQ(got.diagram.tiles, local.diagram.tiles);
+    EXPECT_TRUE(csv_jobs == csv_local) << "voronoi.csv differs";
+    EXPECT_TRUE(gds_jobs == gds_local) << "the drawing differs";
+    ASSERT_EQ(got.stretches.size(), local.stretches.size());
+    for (std::size_t i = 0; i < got.stretches.size(); ++i) {
+      const Stretch a = got.stretches[i], b = local.stretches[i];
+      ASSERT_EQ(a.a, b.a);
+      ASSERT_EQ(a.b, b.b);
+      ASSERT_EQ(a.kind, b.kind);
+      ASSERT_EQ(a.length, b.length);
+      ASSERT_EQ(a.path.size(), b.path.size());
+      for (std::size_t k = 0; k < a.path.size(); ++k) {
+        ASSERT_EQ(a.path[k].x, b.path[k].x);
+        ASSERT_EQ(a.path[k].y, b.path[k].y);
+        ASSERT_EQ(a.clearance[k], b.clearance[k]);
+      }
+    }
+    EXPECT_EQ(got.diagram.swept, sweep);
+  }
  }
 }
 

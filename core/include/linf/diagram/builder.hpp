@@ -100,9 +100,13 @@ using PartPrepare = std::function<std::any(std::vector<Piece>& part, const Box& 
 using PreparedSink = std::function<void(std::vector<Piece>& part, const Box& frame, std::any& prepared)>;
 
 // build_parts with a prepare step: the same parts in the same order, each prepared once.
+// remote (0: none): with a runner and the sweep, a tag every tile job carries, asking its task
+// to prepare the part itself (a preparation the pipeline defines: pipeline/tile_task.hpp); a
+// result that comes with its preparation's bytes reaches the sink with them as a std::string
+// in `prepared`, and `prepare` is not called on it.
 void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, BuildStats* stats,
                  const PartPrepare& prepare, const PreparedSink& sink, const TileRunner& runner,
-                 const ProgressFn& progress = {});
+                 const ProgressFn& progress = {}, std::uint32_t remote = 0);
 
 // One tile job's result bytes from its bytes, with `threads` workers (0: one a core): the
 // same bytes on every host and for every thread count. Throws std::invalid_argument for bytes

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "linf/util/paged.hpp"
@@ -116,6 +117,11 @@ class StretchStream {
   struct Reading;
   std::shared_ptr<const Reading> read(const std::vector<Piece>& part, const Box& frame) const;
   void add(const Reading& reading);
+  // read() where the part's owners are numbered locally (a tile task's sites: local site i is
+  // the layer's site global[i], ascending, so the order of pairs is kept), as bytes with the
+  // layer's ids; reading() makes them a Reading again (std::invalid_argument if malformed).
+  std::string read_bytes(const std::vector<Piece>& part, const Box& frame, const std::vector<int>& global) const;
+  static std::shared_ptr<const Reading> reading(const std::string& bytes);
   void pair(const Piece* pieces, std::size_t n);
   Stretches finish();
 

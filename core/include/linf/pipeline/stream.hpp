@@ -31,6 +31,9 @@ struct StreamOutputs {
   GdsLayers layers;
   // Stretches between the pairs this accepts (with the sites); none if empty.
   std::function<bool(const Sites&, std::int32_t a, std::int32_t b, PieceKind kind)> keep;
+  // keep is measurable_pair (the gauges'): then a runner's sweep tiles are classified and read
+  // for the stretches by their own tasks (tile_task.hpp), not here.
+  bool keep_measurable = false;
 };
 
 struct StreamResult {
