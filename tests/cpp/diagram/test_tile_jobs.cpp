@@ -22,9 +22,11 @@
 #include "linf/pipeline/stream.hpp"
 #include "linf/pipeline/tile_task.hpp"
 #include "layouts.hpp"
+#include "same_stretches.hpp"
 
 using namespace linf;
 using linf::testing::block;
+using linf::testing::expect_same;
 
 namespace {
 
@@ -199,20 +201,7 @@ TEST(TileJobs, StreamFedByJobsWritesTheSameBytes) {
     EXPECT_EQ(got.diagram.tiles, local.diagram.tiles);
     EXPECT_TRUE(csv_jobs == csv_local) << "voronoi.csv differs";
     EXPECT_TRUE(gds_jobs == gds_local) << "the drawing differs";
-    ASSERT_EQ(got.stretches.size(), local.stretches.size());
-    for (std::size_t i = 0; i < got.stretches.size(); ++i) {
-      const Stretch a = got.stretches[i], b = local.stretches[i];
-      ASSERT_EQ(a.a, b.a);
-      ASSERT_EQ(a.b, b.b);
-      ASSERT_EQ(a.kind, b.kind);
-      ASSERT_EQ(a.length, b.length);
-      ASSERT_EQ(a.path.size(), b.path.size());
-      for (std::size_t k = 0; k < a.path.size(); ++k) {
-        ASSERT_EQ(a.path[k].x, b.path[k].x);
-        ASSERT_EQ(a.path[k].y, b.path[k].y);
-        ASSERT_EQ(a.clearance[k], b.clearance[k]);
-      }
-    }
+    expect_same(local.stretches, got.stretches);
     EXPECT_EQ(got.diagram.swept, sweep);
   }
  }

@@ -12,32 +12,12 @@
 #include "linf/gauges/stretch.hpp"
 #include "gauges/chain.hpp"
 #include "layouts.hpp"
+#include "same_stretches.hpp"
 
 using namespace linf;
+using linf::testing::expect_same;
 
 namespace {
-
-// The same stretches in the same order, to the last bit.
-void expect_same(const Stretch& a, const Stretch& b) {
-  ASSERT_EQ(a.a, b.a);
-  ASSERT_EQ(a.b, b.b);
-  ASSERT_EQ(a.kind, b.kind);
-  ASSERT_EQ(a.length, b.length);
-  ASSERT_EQ(a.path.size(), b.path.size());
-  for (std::size_t k = 0; k < a.path.size(); ++k) {
-    ASSERT_EQ(a.path[k].x, b.path[k].x);
-    ASSERT_EQ(a.path[k].y, b.path[k].y);
-    ASSERT_EQ(a.clearance[k], b.clearance[k]);
-  }
-}
-
-void expect_same(const Stretches& want, const Stretches& got) {
-  ASSERT_EQ(want.size(), got.size());
-  for (std::size_t i = 0; i < want.size(); ++i) {
-    expect_same(want[i], got[i]);
-    if (::testing::Test::HasFatalFailure()) return;
-  }
-}
 
 // Rows of 50 wide tracks at a 100 pitch, random lengths and gaps: a routed-metal-like block.
 std::vector<Polygon> tracks(std::uint64_t seed, Coord rows, Coord length) {
