@@ -9,13 +9,12 @@
 // time, its tasks run on the worker threads. Since no task depends on how the tasks are
 // grouped, the pieces are bit-identical for every tile size (tested).
 #pragma once
-#include <vector>
-
-#include "util/parallel.hpp"
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
+#include "util/parallel.hpp"
 #include "subdivision.hpp"
 
 namespace linf::detail {

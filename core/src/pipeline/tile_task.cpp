@@ -13,9 +13,9 @@ namespace linf {
 
 namespace {
 
-// The job's sites, then their neighbours, numbered from 0; a neighbour's own neighbours that
-// are in neither get numbers of their own past those, never looked up (adjacent() compares
-// them), so that two sites share a local number exactly when they share a global one.
+// The job's sites, then their neighbours, numbered from 0; an end (end0, end1) that is in
+// neither gets a number of its own past those, never looked up (adjacent() only compares it),
+// so that two sites name the same end exactly when they do in the layer.
 struct LocalSites {
   Sites sites;
   std::vector<int> global;  // local id -> layer id, for the job's sites (the owners)
