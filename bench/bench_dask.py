@@ -116,7 +116,8 @@ def same(a, b, name):
 
 class Measured:
     """cluster.Tiles with the submitting host's share timed: next (planning a tile, gathering
-    its halo, encoding), done (decoding, classifying, spilling, the stretches), the bytes."""
+    its halo, encoding), done (decoding, the spill; classifying and the stretches' readings
+    where the tasks do not), the bytes."""
 
     def __init__(self, tiles):
         self.tiles = tiles
@@ -388,7 +389,7 @@ try:
     print("builder: local %s, cluster %s" % (r_local["diagram"]["builder"], d_dask["builder"]))
     print(("| wires | sites | tiles | local, 1 thread | %d workers x 1 thread + host %d thread%s | speed-up | same files | "
            % (n_workers, HOST_THREADS, "" if HOST_THREADS == 1 else "s")) +
-          "tile compute sum / mean / max | host per tile (plan+gather / classify+spill) | host after tiles | "
+          "tile compute sum / mean / max | host per tile (plan+gather / decode+spill) | host after tiles | "
           "sent / received | task overhead (batch / round trip) | worker peak RSS |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     print("| %d | %d | %d | %.1f s | %.1f s | %.2f× | %s | %.1f / %.3f / %.3f s | %.1f / %.1f ms | %.1f s | "
