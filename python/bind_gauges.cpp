@@ -28,9 +28,9 @@ double since(std::chrono::steady_clock::time_point t0) {
 }
 
 // The gauge table (gauge_table.hpp) as two bytes objects, or in `file` for the caller to map;
-// with the stretches' paths if asked for, else the stretches are let go first. The gauges are
-// consumed (g.gauges is empty after).
-py::dict gauge_table(const Sites& sites, Gauges& g, bool with_paths, const std::string& file) {
+// with the stretches' paths if asked for, else the stretches are let go first and the rows are
+// made on `threads` threads. The gauges are consumed (g.gauges is empty after).
+py::dict gauge_table(const Sites& sites, Gauges& g, bool with_paths, const std::string& file, int threads) {
   if (!with_paths) g.stretches = Stretches();
   const std::size_t n = g.gauges.size();
   py::object reals = py::none(), ints = py::none();
@@ -51,7 +51,7 @@ py::dict gauge_table(const Sites& sites, Gauges& g, bool with_paths, const std::
       for (const Vec2& v : g.stretches[x.stretch].path) pts.append(py::make_tuple(v.x, v.y));
       paths.append(pts);
     };
-  write_gauge_table(sites, g, *table, each);
+  write_gauge_table(sites, g, *table, each, threads);
   py::dict out;
   out["count"] = n;
   out["reals"] = reals;
@@ -148,7 +148,7 @@ void bind_gauges(py::module_& m) {
         d["seconds"].cast<py::dict>()["gauges"] = seconds;
         py::dict res;
         res["stretches"] = g.measurable;
-        res["gauges"] = gauge_table(diagram.sites, g, with_paths, columns);
+        res["gauges"] = gauge_table(diagram.sites, g, with_paths, columns, threads);
         res["typical_width"] = g.typical_width;
         res["space_limit"] = g.space_limit;
         res["diagram"] = d;

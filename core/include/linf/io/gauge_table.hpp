@@ -39,6 +39,9 @@ class GaugeTableWriter {
   // The next gauge's row; its rank is the rows written before it plus one. Throws
   // std::range_error for an integer beyond 32 bits.
   void add(const Sites& sites, const Gauges& gauges, const Gauge& g);
+  // The next n gauges' rows, as n calls of add, on `threads` threads (0: one a core): a row
+  // depends on its gauge and rank alone, so the bytes do not depend on the threads.
+  void add(const Sites& sites, const Gauges& gauges, const Gauge* g, std::size_t n, int threads);
   // Ends the file (nothing in memory); throws std::runtime_error on a write error.
   void close();
 
@@ -55,11 +58,12 @@ class GaugeTableWriter {
 };
 
 // Every gauge of `gauges` in rank order into `table`, which is closed after; each(g), if set,
-// sees each gauge as it is written. The gauges are consumed: their pages are given back as
-// they are written (on a full layer the records are gigabytes, and nothing reads them
-// afterwards), and gauges.gauges is empty after.
+// sees each gauge as it is written (then on one thread, in rank order; else the rows are made
+// on `threads` threads, 0: one a core, with the same bytes). The gauges are consumed: their
+// pages are given back as they are written (on a full layer the records are gigabytes, and
+// nothing reads them afterwards), and gauges.gauges is empty after.
 void write_gauge_table(const Sites& sites, Gauges& gauges, GaugeTableWriter& table,
-                       const std::function<void(const Gauge&)>& each = {});
+                       const std::function<void(const Gauge&)>& each = {}, int threads = 1);
 
 // A gauge table as the caller holds it, read in place.
 struct GaugeTableView {
