@@ -68,7 +68,7 @@ void bind_diagram(py::module_& m) {
   m.def(
       "build_tile_job",
       [](const py::bytes& job, int threads) {
-        const std::string in = job;
+        const std::string_view in = bytes_view(job);  // the caller holds the bytes: no copy
         std::string out;
         {
           py::gil_scoped_release unlocked;

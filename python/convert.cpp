@@ -57,6 +57,13 @@ py::bytes blank_bytes(std::size_t n, char*& data) {
   return py::reinterpret_steal<py::bytes>(o);
 }
 
+std::string_view bytes_view(const py::bytes& b) {
+  char* data = nullptr;
+  Py_ssize_t n = 0;
+  if (PyBytes_AsStringAndSize(b.ptr(), &data, &n) != 0) throw py::error_already_set();
+  return {data, std::size_t(n)};
+}
+
 ProgressFn progress_of(const py::object& fn) {
   if (fn.is_none()) return {};
   PyObject* f = fn.ptr();  // borrowed: a copy of the ProgressFn must not touch reference counts
@@ -168,7 +175,7 @@ py::dict stage_dict(const StreamResult& r, bool with_drawn) {
 TileRunner runner_of(const py::object& runner) {
   if (runner.is_none()) return {};
   const py::handle f = runner;  // no reference counting where the GIL is not held
-  return [f](const std::function<bool(std::string&)>& next, const std::function<void(const std::string&)>& done) {
+  return [f](const std::function<bool(std::string&)>& next, const std::function<void(std::string_view)>& done) {
     py::gil_scoped_acquire held;
     py::cpp_function py_next([&next]() -> py::object {
       std::string job;
@@ -181,7 +188,7 @@ TileRunner runner_of(const py::object& runner) {
       return py::bytes(job);
     });
     py::cpp_function py_done([&done](const py::bytes& result) {
-      std::string bytes = result;
+      const std::string_view bytes = bytes_view(result);  // a tile's result is megabytes: no copy
       py::gil_scoped_release free;
       done(bytes);
     });

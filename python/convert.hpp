@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -98,6 +99,9 @@ py::bytes bytes_of(const std::vector<T>& v) {
 // A Python bytes object of n bytes, filled in place: a large layer's columns are hundreds of MB,
 // and a C++ buffer copied into bytes would hold them twice.
 py::bytes blank_bytes(std::size_t n, char*& data);
+
+// A bytes object's contents, read in place: valid while the object lives (its caller holds it).
+std::string_view bytes_view(const py::bytes& b);
 
 DiagramOptions options(const py::object& check, int pairs, int threads, double tile = 0, const py::object& progress = py::none(),
                        const std::string& builder = "sweep");

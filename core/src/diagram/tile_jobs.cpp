@@ -4,6 +4,7 @@
 #include <cstring>
 #include <memory>
 #include <stdexcept>
+#include <string_view>
 #include <type_traits>
 
 #include "linf/diagram/sweep.hpp"
@@ -44,7 +45,7 @@ class Writer {
 
 class Reader {
  public:
-  explicit Reader(const std::string& s) : s_(s) {}
+  explicit Reader(std::string_view s) : s_(s) {}
   template <class T>
   T get() {
     T v;
@@ -62,6 +63,14 @@ class Reader {
     at_ += n * sizeof(T);
     return v;
   }
+  // get_all<char>, straight into a string.
+  std::string get_bytes() {
+    const std::uint64_t n = get<std::uint64_t>();
+    if (n > s_.size() - at_) bad();
+    std::string v(s_.substr(at_, std::size_t(n)));
+    at_ += std::size_t(n);
+    return v;
+  }
   void done() const {
     if (at_ != s_.size()) bad();
   }
@@ -71,7 +80,7 @@ class Reader {
     if (s_.size() - at_ < n) bad();
   }
   [[noreturn]] static void bad() { throw std::invalid_argument("a tile job's bytes are truncated or malformed"); }
-  const std::string& s_;
+  std::string_view s_;
   std::size_t at_ = 0;
 };
 
@@ -115,7 +124,7 @@ std::string encode_job(const TileJob& job) {
   return std::move(w.out);
 }
 
-TileJob decode_job(const std::string& bytes) {
+TileJob decode_job(std::string_view bytes) {
   Reader r(bytes);
   check_header(r, kJobTag, "job");
   TileJob job;
@@ -157,15 +166,14 @@ std::string encode_result(const TileResult& res) {
   return std::move(w.out);
 }
 
-TileResult decode_result(const std::string& bytes) {
+TileResult decode_result(std::string_view bytes) {
   Reader r(bytes);
   check_header(r, kResultTag, "result");
   TileResult res;
   res.frame = r.get<Box>();
   res.stats = r.get<BuildStats>();
   res.pieces = r.get_all<Piece>();
-  const std::vector<char> prepared = r.get_all<char>();
-  res.prepared.assign(prepared.begin(), prepared.end());
+  res.prepared = r.get_bytes();
   r.done();
   return res;
 }
@@ -206,7 +214,7 @@ TileResult build_job(const TileJob& job, int threads) {
 
 namespace linf {
 
-std::string build_tile_job(const std::string& job, int threads) {
+std::string build_tile_job(std::string_view job, int threads) {
   return detail::encode_result(detail::build_job(detail::decode_job(job), threads));
 }
 

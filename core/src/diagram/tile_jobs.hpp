@@ -15,6 +15,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "linf/diagram/builder.hpp"
@@ -46,9 +47,9 @@ struct TileResult {
 };
 
 std::string encode_job(const TileJob& job);
-TileJob decode_job(const std::string& bytes);  // throws std::invalid_argument if not a job
+TileJob decode_job(std::string_view bytes);  // throws std::invalid_argument if not a job
 std::string encode_result(const TileResult& r);
-TileResult decode_result(const std::string& bytes);
+TileResult decode_result(std::string_view bytes);
 
 // The tile's pieces from the job alone, `threads` workers (0: one a core).
 TileResult build_job(const TileJob& job, int threads);

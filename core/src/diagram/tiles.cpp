@@ -592,7 +592,7 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
     return more;
   };
   BuildStats work;
-  auto done = [&](const std::string& bytes) {
+  auto done = [&](std::string_view bytes) {
     TileResult r = decode_result(bytes);
     ++received;
     meter.step();

@@ -45,7 +45,7 @@ LocalSites local_sites(const detail::TileJob& job) {
 
 }  // namespace
 
-std::string run_tile_job(const std::string& bytes, int threads) {
+std::string run_tile_job(std::string_view bytes, int threads) {
   const detail::TileJob job = detail::decode_job(bytes);
   detail::TileResult res = detail::build_job(job, threads);
   if (job.prepare == kGaugeReadings && job.opt.sweep && !res.pieces.empty()) {

@@ -59,7 +59,7 @@ struct Inline {
   bool task = false;
   std::size_t prepared = 0;
   TileRunner runner() {
-    return [this](const std::function<bool(std::string&)>& next, const std::function<void(const std::string&)>& done) {
+    return [this](const std::function<bool(std::string&)>& next, const std::function<void(std::string_view)>& done) {
       std::string job;
       while (next(job)) {
         jobs.push_back(job);
@@ -224,7 +224,7 @@ TEST(TileJobs, MalformedBytesAndLostTilesAreRefused) {
   EXPECT_THROW(build_tile_job(other, 1), std::invalid_argument);
   // A runner that stops after one tile: no partial diagram.
   const TileRunner one = [](const std::function<bool(std::string&)>& next,
-                            const std::function<void(const std::string&)>& done) {
+                            const std::function<void(std::string_view)>& done) {
     std::string j;
     if (next(j)) done(build_tile_job(j, 1));
   };

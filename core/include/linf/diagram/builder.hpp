@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "linf/geometry/piece.hpp"
@@ -83,7 +84,7 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
 // results to `done` in the order the jobs were taken. A job holds only its own tile's sites
 // and halo, never the layer's. Exceptions thrown by `done` must reach the caller.
 using TileRunner = std::function<void(const std::function<bool(std::string& job)>& next,
-                                      const std::function<void(const std::string& result)>& done)>;
+                                      const std::function<void(std::string_view result)>& done)>;
 
 // build_parts with the tiles built by `runner` (if empty, as build_parts): the same parts in
 // the same order, bit for bit. The far field (the second pass) is built here. `progress` is
@@ -111,6 +112,6 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
 // One tile job's result bytes from its bytes, with `threads` workers (0: one a core): the
 // same bytes on every host and for every thread count. Throws std::invalid_argument for bytes
 // that are not a job of this core.
-std::string build_tile_job(const std::string& job, int threads);
+std::string build_tile_job(std::string_view job, int threads);
 
 }  // namespace linf

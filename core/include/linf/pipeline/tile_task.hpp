@@ -12,6 +12,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace linf {
 
@@ -19,6 +20,6 @@ namespace linf {
 // measurable pairs (StreamOutputs::keep_measurable).
 constexpr std::uint32_t kGaugeReadings = 1;
 
-std::string run_tile_job(const std::string& job, int threads);
+std::string run_tile_job(std::string_view job, int threads);
 
 }  // namespace linf
