@@ -81,8 +81,9 @@ void build_parts(const Sites& sites, const Box& clip, const BuildOptions& opt, B
 
 // Builds the tiles elsewhere (another process, another host): takes the tiles' jobs one at a
 // time from `next` (false when none is left), has each built by build_tile_job, and hands the
-// results to `done` in the order the jobs were taken. A job holds only its own tile's sites
-// and halo, never the layer's. Exceptions thrown by `done` must reach the caller.
+// results to `done` in the order the jobs were taken (a view, read during the call: a result
+// is megabytes, and is not copied). A job holds only its own tile's sites and halo, never the
+// layer's. Exceptions thrown by `done` must reach the caller.
 using TileRunner = std::function<void(const std::function<bool(std::string& job)>& next,
                                       const std::function<void(std::string_view result)>& done)>;
 
