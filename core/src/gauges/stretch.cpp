@@ -225,8 +225,13 @@ struct StretchStream::Reading {
 };
 
 std::shared_ptr<const StretchStream::Reading> StretchStream::read(const std::vector<Piece>& part, const Box& frame) const {
-  const Impl& m = *impl_;
   auto r = std::make_shared<Reading>();
+  read_into(part, frame, *r);
+  return r;
+}
+
+void StretchStream::read_into(const std::vector<Piece>& part, const Box& frame, Reading& r) const {
+  const Impl& m = *impl_;
   // A vertex farther than this from the frame has all its pieces in this part: pieces stop at
   // the frame, and no end of another part can round to its key (1/1024 DBU).
   const double eps = 1.0 / 64;
@@ -253,14 +258,13 @@ std::shared_ptr<const StretchStream::Reading> StretchStream::read(const std::vec
     for (; g1 < ends.size() && ends[g1].key == k; ++g1)
       framed = framed || on_frame(end_of(part.data(), ends[g1].end).at);
     if (framed) {
-      for (std::size_t e = g0; e < g1; ++e) r->held.push_back({k, end_of(part.data(), ends[e].end)});
+      for (std::size_t e = g0; e < g1; ++e) r.held.push_back({k, end_of(part.data(), ends[e].end)});
     } else {
       vertex(k, g1 - g0, [&](std::size_t e) { return end_of(part.data(), ends[g0 + e].end); }, m.sites, m.keep,
-             has_chain_here, owners, r->points);
+             has_chain_here, owners, r.points);
     }
     g0 = g1;
   }
-  return r;
 }
 
 namespace {
@@ -289,15 +293,14 @@ std::vector<T> get_all(const std::string& in, std::size_t& at) {
 
 std::string StretchStream::read_bytes(const std::vector<Piece>& part, const Box& frame,
                                       const std::vector<int>& global) const {
-  const std::shared_ptr<const Reading> r = read(part, frame);
-  std::vector<PointStretch> points = r->points;
-  std::vector<Held> held = r->held;
+  Reading r;
+  read_into(part, frame, r);
   const auto to = [&](std::int32_t& id) { id = global.at(std::size_t(id)); };
-  for (PointStretch& p : points) to(p.a), to(p.b);
-  for (Held& h : held) to(h.end.a), to(h.end.b);
+  for (PointStretch& p : r.points) to(p.a), to(p.b);
+  for (Held& h : r.held) to(h.end.a), to(h.end.b);
   std::string out;
-  put_all(out, points);
-  put_all(out, held);
+  put_all(out, r.points);
+  put_all(out, r.held);
   return out;
 }
 

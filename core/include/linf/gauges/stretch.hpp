@@ -126,6 +126,7 @@ class StretchStream {
   Stretches finish();
 
  private:
+  void read_into(const std::vector<Piece>& part, const Box& frame, Reading& r) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
