@@ -2,8 +2,10 @@
 // memory or through the file's batches, and the same as one gauge at a time.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <stdexcept>
 #include <string>
