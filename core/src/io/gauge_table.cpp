@@ -72,10 +72,13 @@ void GaugeTableWriter::add(const Sites& sites, const Gauges& gauges, const Gauge
     // Blocks of rows a thread: a row is about half a microsecond, a thread's start far more.
     constexpr std::size_t kBlock = std::size_t(1) << 12;
     const std::size_t blocks = (k + kBlock - 1) / kBlock;
-    detail::parallel_for(blocks, blocks > 1 ? threads : 1, [&](unsigned, std::size_t b) {
+    auto rows = [&](std::size_t b) {
       for (std::size_t i = b * kBlock; i < std::min(k, (b + 1) * kBlock); ++i)
         put_row(sites, gauges, g[i], rows_ + i + 1, rd_ + i * kGaugeRealBytes, id_ + i * kGaugeIntBytes);
-    });
+    };
+    // One block (a gauge at a time, as the editor's paths take them) on this thread directly.
+    if (blocks == 1) rows(0);
+    else detail::parallel_for(blocks, threads, [&](unsigned, std::size_t b) { rows(b); });
     rd_ += k * kGaugeRealBytes, id_ += k * kGaugeIntBytes;
     rows_ += k, g += k, n -= k;
     if (fd_ >= 0 && (in_batch_ += k) == kBatch) flush();
