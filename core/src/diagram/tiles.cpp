@@ -16,6 +16,7 @@
 #include "linf/geometry/distance.hpp"
 #include "linf/util/paged.hpp"
 #include "tile_jobs.hpp"
+#include "util/ahead.hpp"
 #include "util/progress_meter.hpp"
 
 namespace linf::detail {
@@ -545,43 +546,46 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
   // coordinates, no tasks); the subdivision's with their tasks and halos.
   const bool sweep = opt.sweep;
   Plan plan(sites, origin, root, opt, tau, sweep);
-  std::vector<std::vector<int>> halo;
-  std::size_t next_tile = 0;  // row by row, as the local pass
   const std::size_t count = plan.ntiles * plan.ntiles;
   ProgressMeter meter(progress, "building the diagram's tiles", count);
+  // Tile i (row by row, as the local pass) as a job's bytes; empty if it has no pieces.
+  auto make = [&](unsigned worker, std::size_t i) -> std::string {
+    const std::size_t tj = i / plan.ntiles, ti = i % plan.ntiles;
+    TileJob job;
+    job.ids = sweep ? plan.sweep_sites(tj, ti, worker) : plan.gather_tile(tj, ti, job.halos);
+    if (job.ids.size() < 2) return {};  // as the local pass: no pieces
+    job.opt = opt;
+    job.origin = origin, job.root = root, job.tau = tau;
+    job.frame = sweep ? plan.layout_frame(tj, ti) : plan.frame(tj, ti);
+    job.sites.reserve(job.ids.size());
+    for (int t : job.ids) job.sites.push_back(sites[t]);
+    if (!sweep)
+      for (std::size_t k = 0; k < plan.per * plan.per; ++k) job.tasks.push_back(plan.tasks[plan.task_of(tj, ti, k)]);
+    job.prepare = prepare;
+    if (prepare) {
+      for (int t : job.ids) {
+        const Site& v = sites[t];
+        if (!v.is_point()) continue;
+        for (std::int32_t k : {v.end0, v.end1})
+          if (k >= 0 && !std::binary_search(job.ids.begin(), job.ids.end(), k)) job.near_ids.push_back(k);
+      }
+      std::sort(job.near_ids.begin(), job.near_ids.end());
+      job.near_ids.erase(std::unique(job.near_ids.begin(), job.near_ids.end()), job.near_ids.end());
+      for (int t : job.near_ids) job.near.push_back(sites[t]);
+    }
+    return encode_job(job);
+  };
+  // The sweep's tiles are planned ahead on the host's threads (sweep_sites keeps a scratch a
+  // worker), while the runner sends and gathers: on a farm this host plans for every worker.
+  // The subdivision's gather_tile shares its scratch, so its jobs are planned as taken.
+  const unsigned planners = sweep && worker_count(count, opt.threads) > 1 ? worker_count(count, opt.threads) : 0;
+  Ahead<std::string> ahead(count, planners, 2 * std::size_t(planners), make);
+  std::size_t planned = 0;
   auto next = [&](std::string& bytes) {
-    while (next_tile < count) {
-      const std::size_t tj = next_tile / plan.ntiles, ti = next_tile % plan.ntiles;
-      ++next_tile;
-      TileJob job;
-      job.ids = sweep ? plan.sweep_sites(tj, ti, 0) : plan.gather_tile(tj, ti, halo);
-      if (job.ids.size() < 2) {  // as the local pass: no pieces
-        meter.step();
-        continue;
-      }
-      job.opt = opt;
-      job.origin = origin, job.root = root, job.tau = tau;
-      job.frame = sweep ? plan.layout_frame(tj, ti) : plan.frame(tj, ti);
-      job.sites.reserve(job.ids.size());
-      for (int t : job.ids) job.sites.push_back(sites[t]);
-      if (!sweep)
-        for (std::size_t k = 0; k < plan.per * plan.per; ++k) job.tasks.push_back(plan.tasks[plan.task_of(tj, ti, k)]);
-      job.halos = std::move(halo);
-      halo.clear();
-      job.prepare = prepare;
-      if (prepare) {
-        for (int t : job.ids) {
-          const Site& v = sites[t];
-          if (!v.is_point()) continue;
-          for (std::int32_t k : {v.end0, v.end1})
-            if (k >= 0 && !std::binary_search(job.ids.begin(), job.ids.end(), k)) job.near_ids.push_back(k);
-        }
-        std::sort(job.near_ids.begin(), job.near_ids.end());
-        job.near_ids.erase(std::unique(job.near_ids.begin(), job.near_ids.end()), job.near_ids.end());
-        for (int t : job.near_ids) job.near.push_back(sites[t]);
-      }
-      bytes = encode_job(job);
-      return true;
+    while (ahead.take(bytes)) {
+      ++planned;
+      if (!bytes.empty()) return true;
+      meter.step();
     }
     return false;
   };
@@ -604,7 +608,7 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
   };
   runner(counted_next, done);
   // A runner that stops early would leave tiles out: never a partial diagram.
-  if (received != taken || next_tile < count)
+  if (received != taken || planned < count)
     throw std::runtime_error("the tile runner returned " + std::to_string(received) + " results for " +
                              std::to_string(taken) + " jobs taken, of all the tiles' jobs");
   add_work(st, work);

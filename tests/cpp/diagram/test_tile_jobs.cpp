@@ -6,6 +6,7 @@
 // stretches bit for bit.
 #include <gtest/gtest.h>
 
+#include <any>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -157,6 +158,57 @@ TEST(TileJobs, SweepJobsGiveTheLocalSweepsParts) {
         EXPECT_TRUE(job.tasks.empty()) << at;
         EXPECT_LT(job.sites.size(), s.sites.size()) << at;
       }
+    }
+  }
+}
+
+// The sweep's jobs are planned ahead on the host's threads (util/ahead.hpp): the same bytes in
+// the same order for any number of them, the ring neighbours for the gauges' readings included;
+// a runner that fails mid-way stops the planners and its error reaches the caller.
+TEST(TileJobs, PlannedAheadOnTheHostsThreadsTheSameJobs) {
+  const Sites s = sites_of_polygons(merge_polygons(block(2, linf::testing::Style::Rectilinear, 12, 10)));
+  const Box clip = clip_box(s);
+  const double side = std::max(clip.x2 - clip.x1, clip.y2 - clip.y1) / 3;
+  auto jobs = [&](int threads, const TileRunner& runner) {
+    BuildOptions o;
+    o.sweep = true;
+    o.threads = threads;
+    o.tile_size = 0.05 * side;
+    build_parts(s, clip, o, nullptr, [](std::vector<Piece>&, const Box&) { return std::any{}; },
+                [](std::vector<Piece>&, const Box&, std::any&) {}, runner, {}, kGaugeReadings);
+  };
+  Inline one{1, {}};
+  jobs(1, one.runner());
+  ASSERT_GT(one.jobs.size(), 20u);
+  EXPECT_FALSE(detail::decode_job(one.jobs[0]).near_ids.empty() && detail::decode_job(one.jobs[1]).near_ids.empty());
+  for (int threads : {2, 3, 5}) {
+    Inline more{1, {}};
+    jobs(threads, more.runner());
+    ASSERT_EQ(more.jobs.size(), one.jobs.size()) << threads << " threads";
+    // The contents, not the bytes: a job's options are the struct's bytes, padding included.
+    for (std::size_t i = 0; i < one.jobs.size(); ++i) {
+      const detail::TileJob x = detail::decode_job(more.jobs[i]), y = detail::decode_job(one.jobs[i]);
+      const std::string at = std::to_string(threads) + " threads: job " + std::to_string(i);
+      ASSERT_EQ(x.ids, y.ids) << at;
+      ASSERT_EQ(x.near_ids, y.near_ids) << at;
+      EXPECT_TRUE(x.frame.x1 == y.frame.x1 && x.frame.y1 == y.frame.y1 && x.frame.x2 == y.frame.x2 &&
+                  x.frame.y2 == y.frame.y2) << at;
+      EXPECT_EQ(x.prepare, kGaugeReadings) << at;
+      EXPECT_EQ(x.opt.threads, threads) << at;
+    }
+    std::size_t built = 0;
+    const TileRunner failing = [&](const std::function<bool(std::string&)>& next,
+                                   const std::function<void(std::string_view)>& done) {
+      for (std::string j; next(j);) {
+        if (++built == 4) throw std::runtime_error("worker lost");
+        done(build_tile_job(j, 1));
+      }
+    };
+    try {
+      jobs(threads, failing);
+      ADD_FAILURE() << threads << " threads: the runner's error was lost";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "worker lost") << threads << " threads";
     }
   }
 }
