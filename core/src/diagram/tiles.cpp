@@ -575,10 +575,11 @@ void build_tiled_jobs(const SiteList& sites, const Point& origin, const Box& roo
     }
     return encode_job(job);
   };
-  // The sweep's tiles are planned ahead on the host's threads (sweep_sites keeps a scratch a
-  // worker), while the runner sends and gathers: on a farm this host plans for every worker.
-  // The subdivision's gather_tile shares its scratch, so its jobs are planned as taken.
-  const unsigned planners = sweep && worker_count(count, opt.threads) > 1 ? worker_count(count, opt.threads) : 0;
+  // The sweep's tiles are planned ahead on the host's other threads (sweep_sites keeps a
+  // scratch a worker), while the runner's thread sends and gathers: on a farm this host plans
+  // for every worker. The subdivision's gather_tile shares its scratch, so its jobs are planned
+  // as they are taken; so are all with one thread.
+  const unsigned planners = sweep ? worker_count(count, opt.threads) - 1 : 0;
   Ahead<std::string> ahead(count, planners, 2 * std::size_t(planners), make);
   std::size_t planned = 0;
   auto next = [&](std::string& bytes) {
