@@ -162,8 +162,8 @@ TEST(TileJobs, SweepJobsGiveTheLocalSweepsParts) {
   }
 }
 
-// The sweep's jobs are planned ahead on the host's threads (util/ahead.hpp): the same bytes in
-// the same order for any number of them, the ring neighbours for the gauges' readings included;
+// The sweep's jobs are planned ahead on the host's threads (util/ahead.hpp): the same jobs (sites,
+// frames, the ring neighbours for the gauges' readings) in the same order for any number of them;
 // a runner that fails mid-way stops the planners and its error reaches the caller.
 TEST(TileJobs, PlannedAheadOnTheHostsThreadsTheSameJobs) {
   const Sites s = sites_of_polygons(merge_polygons(block(2, linf::testing::Style::Rectilinear, 12, 10)));
